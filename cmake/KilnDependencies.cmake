@@ -1,0 +1,33 @@
+# Dependency glue: every dependency comes from a Debian 12 package with a CMake config.
+find_package(Threads REQUIRED)
+find_package(TBB REQUIRED)
+find_package(embree 3 REQUIRED)
+find_package(OpenImageIO REQUIRED)
+find_package(pugixml REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(tinyobjloader REQUIRED)
+find_package(GTest)
+find_package(benchmark QUIET)
+
+# Debian's OpenImageIO config lists /usr/include/opencv4 among its include directories although Kiln never uses
+# OpenCV; CMake refuses a non-existent imported include path, so drop it instead of installing OpenCV.
+foreach(_tgt OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
+  if(TARGET ${_tgt})
+    get_target_property(_inc ${_tgt} INTERFACE_INCLUDE_DIRECTORIES)
+    if(_inc)
+      list(FILTER _inc EXCLUDE REGEX "opencv")
+      set_target_properties(${_tgt} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_inc}")
+    endif()
+  endif()
+endforeach()
+add_library(kiln_oiio INTERFACE)
+target_link_libraries(kiln_oiio INTERFACE OpenImageIO::OpenImageIO)
+
+# Debian ships tinyobjloader under two target names depending on the release.
+add_library(kiln_tinyobjloader INTERFACE)
+if(TARGET tinyobjloader::tinyobjloader)
+  target_link_libraries(kiln_tinyobjloader INTERFACE tinyobjloader::tinyobjloader)
+else()
+  target_link_libraries(kiln_tinyobjloader INTERFACE tinyobjloader)
+endif()

@@ -1,0 +1,92 @@
+// Sampling warps from [0,1)^2 to geometric domains, each with its exact pdf (pbrt-v4 util/sampling.h style).
+#pragma once
+#include <span>
+#include <vector>
+
+#include "core/frame.h"
+
+namespace kiln {
+
+// Uniform hemisphere around +z; pdf 1/(2 pi) per steradian.
+inline Vec3f sample_uniform_hemisphere(Vec2f u) {
+  const float z = u.x;
+  const float r = safe_sqrt(1.0f - z * z);
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline float uniform_hemisphere_pdf() { return kInv2Pi; }
+
+inline Vec3f sample_uniform_sphere(Vec2f u) {
+  const float z = 1.0f - 2.0f * u.x;
+  const float r = safe_sqrt(1.0f - z * z);
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline float uniform_sphere_pdf() { return kInv4Pi; }
+
+// Concentric (Shirley-Chiu) map to the unit disk.
+inline Vec2f sample_uniform_disk_concentric(Vec2f u) {
+  const float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
+  if (ox == 0.0f && oy == 0.0f) return {0.0f, 0.0f};
+  float r, theta;
+  if (std::abs(ox) > std::abs(oy)) {
+    r = ox;
+    theta = (kPi / 4.0f) * (oy / ox);
+  } else {
+    r = oy;
+    theta = (kPi / 2.0f) - (kPi / 4.0f) * (ox / oy);
+  }
+  return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+// Cosine-weighted hemisphere around +z (Malley's method); pdf cos(theta)/pi.
+inline Vec3f sample_cosine_hemisphere(Vec2f u) {
+  const Vec2f d = sample_uniform_disk_concentric(u);
+  const float z = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
+  return {d.x, d.y, z};
+}
+inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta * kInvPi : 0.0f; }
+
+// Uniform over the cone of directions around +z with cos(theta) >= cos_max; pdf 1/(2 pi (1 - cos_max)).
+// one_minus_cos_max is passed separately so tiny cones (far or small spheres) keep their precision.
+inline Vec3f sample_uniform_cone(Vec2f u, float one_minus_cos_max) {
+  const float one_minus_cos = u.x * one_minus_cos_max;
+  const float cos_t = 1.0f - one_minus_cos;
+  // sin^2 = (1 - cos)(1 + cos), which stays accurate when cos is close to 1.
+  const float sin_t = safe_sqrt(one_minus_cos * (2.0f - one_minus_cos));
+  const float phi = 2.0f * kPi * u.y;
+  return {sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t};
+}
+inline float uniform_cone_pdf(float one_minus_cos_max) { return 1.0f / (2.0f * kPi * one_minus_cos_max); }
+
+// Uniform barycentrics on a triangle (square-root warp): returns (b1, b2), b0 = 1 - b1 - b2.
+inline Vec2f sample_uniform_triangle(Vec2f u) {
+  const float su = std::sqrt(u.x);
+  return {1.0f - su, u.y * su};
+}
+
+// Discrete distribution over n weights, sampled by inverting the CDF (binary search); built once.
+class Distribution1D {
+ public:
+  Distribution1D() = default;
+  explicit Distribution1D(std::span<const float> weights);
+  size_t size() const { return pmf_.size(); }
+  double total() const { return total_; }
+  // Index chosen with probability weight/total; u in [0,1). The remapped u (for reuse) goes to *u_remapped.
+  size_t sample(float u, float* pmf = nullptr, float* u_remapped = nullptr) const;
+  float pmf(size_t i) const { return i < pmf_.size() ? pmf_[i] : 0.0f; }
+
+ private:
+  std::vector<float> pmf_;
+  std::vector<double> cdf_;  // cdf_[i] = sum of pmf_[0..i), size n+1
+  double total_ = 0.0;
+};
+
+// Power heuristic (beta = 2) for multiple importance sampling.
+inline float power_heuristic(float f_pdf, float g_pdf) {
+  if (std::isinf(f_pdf)) return 1.0f;
+  const float f = f_pdf * f_pdf, g = g_pdf * g_pdf;
+  return (f + g) > 0.0f ? f / (f + g) : 0.0f;
+}
+
+}  // namespace kiln

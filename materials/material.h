@@ -1,0 +1,55 @@
+// A built material: a non-delta surface BRDF (diffuse / glossy, possibly none) plus an optional delta part
+// (mirror, dielectric, conductor, optionally roughened). All directions are in the local shading frame
+// (cos theta = w.z, wo and the geometric side on +z unless transmission is involved).
+#pragma once
+#include <optional>
+#include <variant>
+
+#include "materials/bsdf_sample.h"
+#include "materials/blinn_phong.h"
+#include "materials/conductor.h"
+#include "materials/dielectric.h"
+#include "materials/lambert.h"
+#include "materials/mirror.h"
+#include "materials/phong.h"
+#include "materials/torrance_sparrow.h"
+
+namespace kiln {
+
+struct NoSurface {};
+using SurfaceBrdf = std::variant<NoSurface, Lambert, Phong, BlinnPhong, TorranceSparrow>;
+struct NoDelta {};
+using DeltaBsdf = std::variant<NoDelta, Mirror, Dielectric, Conductor>;
+
+// One deterministic branch of a delta lobe for the Whitted-style tracer (reflection and refraction).
+struct DeltaBranch {
+  Vec3f wi;       // local frame
+  Rgb weight;     // multiplies the radiance arriving along wi (Fresnel, mirror colour; no cosine, no pdf)
+  bool transmission = false;
+};
+
+struct Material {
+  Rgb ambient{0};
+  SurfaceBrdf surface = NoSurface{};
+  DeltaBsdf delta = NoDelta{};
+  float roughness = 0.0f;  // course glossy reflection: perturb delta directions by roughness * U[-0.5,0.5]^2
+  Rgb absorption{0};       // Beer-Lambert coefficient inside dielectrics: transmittance exp(-absorption * d)
+
+  bool has_surface() const { return !std::holds_alternative<NoSurface>(surface); }
+  bool has_delta() const { return !std::holds_alternative<NoDelta>(delta); }
+  uint32_t flags() const;
+
+  // Non-delta part only (the delta part evaluates to 0 for any pair of directions).
+  Rgb eval(Vec3f wo, Vec3f wi) const;
+  // pdf of sample() producing wi through its non-delta lobes, including the lobe-selection probability.
+  float pdf(Vec3f wo, Vec3f wi) const;
+  // Samples the whole material (surface and delta lobes). uc chooses the lobe, u the direction.
+  // Empty when no direction could be produced; never NaN.
+  std::optional<BsdfSample> sample(Vec3f wo, float uc, Vec2f u) const;
+  // The delta part's deterministic branches (0, 1 or 2), for the course ray tracer; roughness is applied by
+  // the caller through perturb(). Returns the count written to out.
+  int delta_branches(Vec3f wo, DeltaBranch out[2]) const;
+  Rgb transmittance(float distance) const { return exp(absorption * (-distance)); }
+};
+
+}  // namespace kiln
