@@ -5,9 +5,15 @@
 namespace kiln {
 
 Distribution1D::Distribution1D(std::span<const float> weights) : pmf_(weights.size()), cdf_(weights.size() + 1) {
+  auto usable = [](float w) { return w > 0.0f && std::isfinite(w); };
+  double sum = 0.0;
+  for (float w : weights)
+    if (usable(w)) sum += w;
+  // A weight whose float pmf underflows to 0 would still own a (vanishing) CDF interval, so it could be returned
+  // with pmf 0 and divide by zero in an estimator; it is treated as zero weight instead.
   cdf_[0] = 0.0;
   for (size_t i = 0; i < weights.size(); ++i) {
-    const double w = (weights[i] > 0.0f && std::isfinite(weights[i])) ? weights[i] : 0.0;
+    const double w = (usable(weights[i]) && float(weights[i] / sum) > 0.0f) ? weights[i] : 0.0;
     cdf_[i + 1] = cdf_[i] + w;
   }
   total_ = cdf_.back();

@@ -83,10 +83,17 @@ class Distribution1D {
 };
 
 // Power heuristic (beta = 2) for multiple importance sampling.
+// Written in terms of the ratio of the smaller to the larger pdf: squaring the pdfs themselves overflows to
+// inf/inf = NaN above ~1e19 (grazing area-light pdfs) and underflows to 0/0 below ~1e-19.
 inline float power_heuristic(float f_pdf, float g_pdf) {
   if (std::isinf(f_pdf)) return 1.0f;
-  const float f = f_pdf * f_pdf, g = g_pdf * g_pdf;
-  return (f + g) > 0.0f ? f / (f + g) : 0.0f;
+  if (f_pdf >= g_pdf) {
+    if (!(f_pdf > 0.0f)) return 0.0f;
+    const float r = g_pdf / f_pdf;
+    return 1.0f / (1.0f + r * r);
+  }
+  const float r = f_pdf / g_pdf;
+  return (r * r) / (1.0f + r * r);
 }
 
 }  // namespace kiln

@@ -11,6 +11,7 @@
 #include "materials/dielectric.h"
 #include "materials/lambert.h"
 #include "materials/mirror.h"
+#include "materials/perturb.h"
 #include "materials/phong.h"
 #include "materials/torrance_sparrow.h"
 
@@ -46,6 +47,13 @@ struct Material {
   // Samples the whole material (surface and delta lobes). uc chooses the lobe, u the direction.
   // Empty when no direction could be produced; never NaN.
   std::optional<BsdfSample> sample(Vec3f wo, float uc, Vec2f u) const;
+  // Probability that sample() picks the delta part: 1 with no surface BRDF, 0 with no delta part, otherwise the
+  // documented mixture weight. Integrators that sample the surface part their own way (uniform / cosine) use it to
+  // choose between the parts.
+  float delta_probability(Vec3f wo) const;
+  // Samples the delta part only (mirror / dielectric / conductor, roughened when roughness > 0); the returned pdf
+  // does NOT include delta_probability. Empty when there is no delta part.
+  std::optional<BsdfSample> sample_delta(Vec3f wo, float uc, Vec2f u) const;
   // The delta part's deterministic branches (0, 1 or 2), for the course ray tracer; roughness is applied by
   // the caller through perturb(). Returns the count written to out.
   int delta_branches(Vec3f wo, DeltaBranch out[2]) const;

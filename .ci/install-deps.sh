@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Kiln builds with, only those that are missing.
+set -euo pipefail
+pkgs=(build-essential cmake libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
+      libtinyobjloader-dev libgtest-dev libbenchmark-dev libpugixml-dev nlohmann-json3-dev libcli11-dev)
+# The sanitizer and fuzzing builds use clang's runtime.
+if [ "${KILN_WITH_CLANG:-0}" = 1 ]; then pkgs+=(clang libclang-rt-14-dev); fi
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO=sudo
+  echo "installing: ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,25 @@
+#include "lights/light.h"
+
+namespace kiln {
+
+std::optional<LightSample> sample_li(const Light& light, const LightQuery& q, Vec2f u) {
+  return std::visit([&](const auto& l) { return l.sample_li(q, u); }, light);
+}
+
+float pdf_li(const Light& light, const LightQuery& q, Vec3f p_light, Vec3f n_light, uint32_t prim) {
+  return std::visit([&](const auto& l) { return l.pdf_li(q, p_light, n_light, prim); }, light);
+}
+
+Rgb emitted(const Light& light, Vec3f n, Vec3f w) {
+  return std::visit([&](const auto& l) { return l.emitted(n, w); }, light);
+}
+
+float power(const Light& light) {
+  return std::visit([](const auto& l) { return l.power(); }, light);
+}
+
+bool is_delta(const Light& light) {
+  return std::visit([](const auto& l) { return std::decay_t<decltype(l)>::kDelta; }, light);
+}
+
+}  // namespace kiln

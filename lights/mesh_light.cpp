@@ -1,0 +1,76 @@
+#include "lights/mesh_light.h"
+
+#include <string>
+
+#include "core/error.h"
+
+namespace kiln {
+
+MeshLight::MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t> indices, Rgb radiance)
+    : radiance_(radiance) {
+  if (indices.size() % 3 != 0)
+    throw Error("LightMesh: " + std::to_string(indices.size()) + " vertex indices is not a whole number of triangles");
+  tris_.resize(indices.size() / 3);
+  std::vector<float> areas(tris_.size());
+  double total = 0.0;
+  for (size_t i = 0; i < tris_.size(); ++i) {
+    for (int k = 0; k < 3; ++k)
+      if (indices[3 * i + size_t(k)] >= positions.size())
+        throw Error("LightMesh: triangle " + std::to_string(i) + " uses vertex index " +
+                    std::to_string(indices[3 * i + size_t(k)]) + " but there are only " +
+                    std::to_string(positions.size()) + " vertices");
+    Tri& t = tris_[i];
+    t.p0 = positions[indices[3 * i]];
+    t.p1 = positions[indices[3 * i + 1]];
+    t.p2 = positions[indices[3 * i + 2]];
+    const Vec3f c = cross(t.p1 - t.p0, t.p2 - t.p0);
+    const float len = length(c);
+    if (len > 0.0f && std::isfinite(len)) {
+      t.area = 0.5f * len;
+      t.n = c / len;
+    }
+    areas[i] = t.area;
+    total += double(t.area);
+  }
+  total_area_ = float(total);
+  dist_ = Distribution1D(areas);
+}
+
+std::optional<LightSample> MeshLight::sample_li(const LightQuery& q, Vec2f u) const {
+  if (!(total_area_ > 0.0f)) return std::nullopt;
+  float pmf = 0.0f, u_tri = 0.0f;
+  const size_t i = dist_.sample(u.x, &pmf, &u_tri);
+  const Tri& t = tris_[i];
+  if (!(pmf > 0.0f) || !(t.area > 0.0f)) return std::nullopt;
+  const Vec2f b = sample_uniform_triangle({u_tri, u.y});
+  const Vec3f p = t.p0 * (1.0f - b.x - b.y) + t.p1 * b.x + t.p2 * b.y;
+  const Vec3f to_light = p - q.p;
+  const float d2 = length_squared(to_light);
+  if (!(d2 > 0.0f) || !std::isfinite(d2)) return std::nullopt;
+  const float d = std::sqrt(d2);
+  const Vec3f wi = to_light / d;
+  const float cos_l = -dot(t.n, wi);
+  if (!(cos_l > 0.0f)) return std::nullopt;  // q sees the back (non-emitting) side
+  LightSample s;
+  s.li = radiance_;
+  s.wi = wi;
+  s.p_light = p;
+  s.n_light = t.n;
+  s.distance = d;
+  s.pdf = (pmf / t.area) * d2 / cos_l;
+  return s;
+}
+
+float MeshLight::pdf_li(const LightQuery& q, Vec3f p_light, Vec3f, uint32_t prim) const {
+  if (prim >= tris_.size()) return 0.0f;
+  const Tri& t = tris_[prim];
+  const float pmf = dist_.pmf(prim);
+  if (!(pmf > 0.0f) || !(t.area > 0.0f)) return 0.0f;
+  const Vec3f to_light = p_light - q.p;
+  const float d2 = length_squared(to_light);
+  if (!(d2 > 0.0f)) return 0.0f;
+  const float cos_l = -dot(t.n, to_light) / std::sqrt(d2);
+  return cos_l > 0.0f ? (pmf / t.area) * d2 / cos_l : 0.0f;
+}
+
+}  // namespace kiln

@@ -1,0 +1,49 @@
+// Emissive triangle mesh (CENG795 LightMesh): one light over all of its triangles.
+//   positions  WORLD-space vertex positions (the loader applies the mesh's transformations)
+//   indices    0-based vertex index triplets; triangle i is indices[3i..3i+2] and is the `prim` the accelerator
+//              reports for that triangle
+//   radiance   constant radiance L emitted from the FRONT side only: the side of the geometric normal
+//              (v1 - v0) x (v2 - v0) (right-hand rule, spec sections 7 and 9)
+// A sample picks a triangle with probability proportional to its area (zero-area triangles are never picked),
+// then a uniform point on it; the area pdf 1/A_total becomes the solid-angle pdf d^2 / (|cos theta_l| A_total).
+#pragma once
+#include <span>
+#include <vector>
+
+#include "core/sampling.h"
+#include "lights/light_sample.h"
+
+namespace kiln {
+
+class MeshLight {
+ public:
+  // Throws kiln::Error when indices is not a multiple of 3 or names a vertex that does not exist.
+  MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t> indices, Rgb radiance);
+
+  std::optional<LightSample> sample_li(const LightQuery& q, Vec2f u) const;
+  // Density of sample_li at p_light on triangle prim; 0 when q is behind that triangle's emitting side.
+  float pdf_li(const LightQuery& q, Vec3f p_light, Vec3f n_light, uint32_t prim) const;
+  // n must be the triangle's geometric normal in winding order (not face-forwarded).
+  Rgb emitted(Vec3f n, Vec3f w) const { return dot(n, w) > 0.0f ? radiance_ : Rgb{}; }
+  float power() const { return kPi * total_area_ * radiance_.luminance(); }
+  static constexpr bool kDelta = false;
+
+  size_t triangle_count() const { return tris_.size(); }
+  float total_area() const { return total_area_; }
+  float triangle_area(size_t i) const { return tris_[i].area; }
+  // Probability that a sample lands on triangle i.
+  float triangle_pmf(size_t i) const { return dist_.pmf(i); }
+
+ private:
+  struct Tri {
+    Vec3f p0, p1, p2;
+    Vec3f n;  // unit geometric normal; zero for degenerate triangles
+    float area = 0;
+  };
+  std::vector<Tri> tris_;
+  Distribution1D dist_;
+  Rgb radiance_;
+  float total_area_ = 0;
+};
+
+}  // namespace kiln

@@ -1,0 +1,31 @@
+// Smooth conductor (2021 type="conductor"): mirror reflection weighted by MirrorReflectance times the exact
+// Fresnel reflectance of the complex index eta + i kappa. Two-sided.
+//
+// Parameters:
+//   reflectance  k_m (MirrorReflectance)
+//   eta          RefractionIndex (real part, relative to air)
+//   kappa        AbsorptionIndex (imaginary part)
+// eval and pdf are 0 (delta lobe); sample returns the reflection with f = k_m F / |cos(theta_i)| and pdf 1.
+#pragma once
+#include <optional>
+
+#include "materials/bsdf_sample.h"
+#include "materials/specular_branch.h"
+
+namespace kiln {
+
+struct Conductor {
+  Rgb reflectance{1.0f};
+  float eta = 0.37f;
+  float kappa = 2.82f;
+
+  Rgb eval(Vec3f, Vec3f) const { return Rgb(0.0f); }
+  float pdf(Vec3f, Vec3f) const { return 0.0f; }
+  std::optional<BsdfSample> sample(Vec3f wo, float uc, Vec2f u) const;
+  uint32_t flags() const { return kLobeReflection | kLobeSpecular; }
+  int branches(Vec3f wo, SpecularBranch out[2]) const;
+  float fresnel(float cos_theta_o) const;
+  float albedo_estimate(Vec3f wo) const { return reflectance.average() * fresnel(wo.z); }
+};
+
+}  // namespace kiln

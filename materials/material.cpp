@@ -1,0 +1,175 @@
+// Material = optional surface BRDF + optional delta BSDF.
+//
+// Sidedness: surface BRDFs are written for wo.z > 0; the material makes them two-sided by mirroring both
+// directions through the surface plane when wo.z < 0 (so a dielectric's glossy coat also works from inside).
+// Delta parts handle both sides themselves (the dielectric needs the side to know which way it refracts).
+//
+// Lobe choice in sample(): the delta part is picked with probability
+//   delta_probability(wo) = a_delta / (a_surface + a_delta)
+// where a_surface is the surface BRDF's normal-incidence albedo estimate and a_delta is the mirror colour
+// average (mirror), mirror colour times conductor Fresnel at wo (conductor) or 1 (dielectric). It is 1 with no
+// surface, 0 with no delta part and 1/2 when both estimates vanish. pdf() includes the factor 1 - that.
+#include "materials/material.h"
+
+namespace kiln {
+namespace {
+
+Vec3f flip_z(Vec3f w) { return {w.x, w.y, -w.z}; }
+
+float clamp_unit(float u) { return std::clamp(u, 0.0f, kOneMinusEpsilon); }
+
+float surface_albedo_estimate(const SurfaceBrdf& s) {
+  return std::visit(
+      [](const auto& b) -> float {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return 0.0f;
+        else return b.albedo_estimate();
+      },
+      s);
+}
+
+float delta_albedo_estimate(const DeltaBsdf& d, Vec3f wo) {
+  return std::visit(
+      [wo](const auto& b) -> float {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>) return 0.0f;
+        else return b.albedo_estimate(wo);
+      },
+      d);
+}
+
+int delta_branches_of(const DeltaBsdf& d, Vec3f wo, SpecularBranch out[2]) {
+  return std::visit(
+      [&](const auto& b) -> int {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>) return 0;
+        else return b.branches(wo, out);
+      },
+      d);
+}
+
+// Surface BRDF in the hemisphere of wo.
+Rgb surface_eval(const SurfaceBrdf& s, Vec3f wo, Vec3f wi) {
+  if (wo.z < 0.0f) {
+    wo = flip_z(wo);
+    wi = flip_z(wi);
+  }
+  return std::visit(
+      [&](const auto& b) -> Rgb {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return Rgb(0.0f);
+        else return b.eval(wo, wi);
+      },
+      s);
+}
+
+float surface_pdf(const SurfaceBrdf& s, Vec3f wo, Vec3f wi) {
+  if (wo.z < 0.0f) {
+    wo = flip_z(wo);
+    wi = flip_z(wi);
+  }
+  return std::visit(
+      [&](const auto& b) -> float {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return 0.0f;
+        else return b.pdf(wo, wi);
+      },
+      s);
+}
+
+std::optional<BsdfSample> surface_sample(const SurfaceBrdf& s, Vec3f wo, float uc, Vec2f u) {
+  const bool flip = wo.z < 0.0f;
+  if (flip) wo = flip_z(wo);
+  std::optional<BsdfSample> bs = std::visit(
+      [&](const auto& b) -> std::optional<BsdfSample> {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return std::nullopt;
+        else return b.sample(wo, uc, u);
+      },
+      s);
+  if (bs && flip) bs->wi = flip_z(bs->wi);
+  return bs;
+}
+
+uint32_t surface_flags(const SurfaceBrdf& s) {
+  return std::visit(
+      [](const auto& b) -> uint32_t {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return kLobeNone;
+        else return b.flags();
+      },
+      s);
+}
+
+uint32_t delta_flags(const DeltaBsdf& d) {
+  return std::visit(
+      [](const auto& b) -> uint32_t {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>) return kLobeNone;
+        else return b.flags();
+      },
+      d);
+}
+
+bool valid_sample(const BsdfSample& s) {
+  return s.pdf > 0.0f && std::isfinite(s.pdf) && s.f.is_finite() && !s.f.has_negative() && is_finite(s.wi);
+}
+
+}  // namespace
+
+uint32_t Material::flags() const { return surface_flags(surface) | delta_flags(delta); }
+
+Rgb Material::eval(Vec3f wo, Vec3f wi) const {
+  if (!has_surface()) return Rgb(0.0f);
+  return surface_eval(surface, wo, wi);
+}
+
+float Material::delta_probability(Vec3f wo) const {
+  if (!has_delta()) return 0.0f;
+  if (!has_surface()) return 1.0f;
+  const float a_s = std::max(0.0f, surface_albedo_estimate(surface));
+  const float a_d = std::max(0.0f, delta_albedo_estimate(delta, wo));
+  if (!(a_s + a_d > 0.0f)) return 0.5f;
+  return a_d / (a_s + a_d);
+}
+
+float Material::pdf(Vec3f wo, Vec3f wi) const {
+  if (!has_surface()) return 0.0f;
+  return (1.0f - delta_probability(wo)) * surface_pdf(surface, wo, wi);
+}
+
+std::optional<BsdfSample> Material::sample_delta(Vec3f wo, float uc, Vec2f u) const {
+  SpecularBranch b[2];
+  const int n = delta_branches_of(delta, wo, b);
+  if (n == 0) return std::nullopt;
+  // Choose the branch first, then roughen only the chosen direction.
+  int i = 0;
+  float cdf = b[0].probability;
+  while (i + 1 < n && uc >= cdf) cdf += b[++i].probability;
+  SpecularBranch chosen = b[i];
+  const std::optional<Vec3f> wi = perturb(chosen.wi, roughness, u);
+  if (!wi) return std::nullopt;
+  chosen.wi = *wi;
+  std::optional<BsdfSample> s = sample_branch(&chosen, 1, 0.0f);
+  if (!s || !valid_sample(*s)) return std::nullopt;
+  return s;
+}
+
+std::optional<BsdfSample> Material::sample(Vec3f wo, float uc, Vec2f u) const {
+  if (!is_finite(wo)) return std::nullopt;
+  const float pd = delta_probability(wo);
+  if (uc < pd) {
+    std::optional<BsdfSample> s = sample_delta(wo, clamp_unit(uc / pd), u);
+    if (!s) return std::nullopt;
+    s->pdf *= pd;
+    if (!valid_sample(*s)) return std::nullopt;
+    return s;
+  }
+  if (!has_surface()) return std::nullopt;
+  std::optional<BsdfSample> s = surface_sample(surface, wo, clamp_unit((uc - pd) / (1.0f - pd)), u);
+  if (!s) return std::nullopt;
+  s->pdf *= 1.0f - pd;
+  if (!valid_sample(*s)) return std::nullopt;
+  return s;
+}
+
+int Material::delta_branches(Vec3f wo, DeltaBranch out[2]) const {
+  SpecularBranch b[2];
+  const int n = delta_branches_of(delta, wo, b);
+  for (int i = 0; i < n; ++i) out[i] = DeltaBranch{b[i].wi, b[i].weight, b[i].transmission};
+  return n;
+}
+
+}  // namespace kiln

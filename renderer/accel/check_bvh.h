@@ -1,0 +1,52 @@
+// check-bvh: cross-checks the in-house BVH against Embree ray by ray. Camera rays come from the caller; from each
+// camera ray's Embree hit a cosine-distributed bounce ray (about the geometric normal, on the side the camera ray
+// came from) and a shadow ray towards a uniformly random point of the scene bounds are spawned with
+// offset_ray_origin, and every ray goes through both accelerators. Compared: hit versus miss, distance
+// (relative kCheckBvhDistanceTolerance) and primitive; a different primitive at an agreeing distance is an edge
+// tie (a ray through a shared edge or vertex may legitimately report either triangle) and is counted apart from
+// disagreements. The check passes when disagreements <= kCheckBvhMaxDisagreementRate of all rays.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "core/rng.h"
+#include "renderer/accel/accelerator.h"
+#include "renderer/accel/bvh_build.h"
+
+namespace kiln {
+
+inline constexpr float kCheckBvhDistanceTolerance = 1e-5f;
+inline constexpr double kCheckBvhMaxDisagreementRate = 1e-5;
+
+struct CheckBvhOptions {
+  size_t rays = 100000;  // camera rays; each may add one bounce and one shadow ray
+  uint64_t seed = 1;
+};
+
+struct CheckBvhKind {
+  size_t rays = 0, disagreements = 0, edge_ties = 0;
+};
+
+struct CheckBvhReport {
+  CheckBvhKind camera, bounce, shadow;
+  size_t total_rays() const { return camera.rays + bounce.rays + shadow.rays; }
+  size_t total_disagreements() const { return camera.disagreements + bounce.disagreements + shadow.disagreements; }
+  BvhTreeStats bvh;  // the world tree: SAH cost, nodes, depth, leaf-size histogram
+  AccelStats embree_stats, bvh_stats;
+  std::string first_disagreement;  // a description of the first one found, empty when none
+  bool passed = false;
+  std::string to_json() const;
+};
+
+// Builds both accelerators over geometry and compares them. camera_ray(i, rng) makes camera ray i (rng is that
+// ray's own stream, seeded from options.seed and i, so the result does not depend on thread count).
+CheckBvhReport check_bvh(const WorldGeometry& geometry, const std::function<Ray(size_t i, Rng&)>& camera_ray,
+                         const CheckBvhOptions& options);
+
+class Bvh;
+// The same comparison for accelerators the caller built (tests use it with a deliberately corrupted Bvh).
+CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embree, const Bvh& bvh,
+                         const std::function<Ray(size_t i, Rng&)>& camera_ray, const CheckBvhOptions& options);
+
+}  // namespace kiln

@@ -1,0 +1,268 @@
+#include "renderer/accel/embree_accel.h"
+
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "renderer/accel/hit_point.h"
+#include "renderer/accel/object_ray.h"
+#include "renderer/accel/shape_bounds.h"
+#include "renderer/accel/sphere_intersect.h"
+
+namespace kiln {
+namespace {
+
+// What a sphere's user-geometry callbacks need; the transform is skipped for plain spheres.
+struct SphereData {
+  const SphereShape* shape = nullptr;
+  bool has_transform = false;
+  Transform to_object;
+};
+
+void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
+  const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
+  const Bounds3f b = sphere_world_bounds(*s->shape);
+  *args->bounds_o = RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
+}
+
+inline void sphere_object_ray(const SphereData& s, Vec3f& o, Vec3f& d) {
+  if (s.has_transform) to_object_space(s.to_object, o, d);
+}
+
+void sphere_intersect_cb(const RTCIntersectFunctionNArguments* args) {
+  const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const Vec3f wo(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i));
+    const Vec3f wd(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
+    Vec3f o = wo, d = wd;
+    sphere_object_ray(*s, o, d);
+    const auto t = intersect_sphere(o, d, s->shape->center, s->shape->radius, RTCRayN_tnear(ray, args->N, i),
+                                    RTCRayN_tfar(ray, args->N, i));
+    if (!t) continue;
+    const Vec3f n = sphere_world_normal(*s->shape, Ray{wo, wd}, *t);
+    RTCRayN_tfar(ray, args->N, i) = *t;
+    RTCHitN_Ng_x(hit, args->N, i) = n.x;
+    RTCHitN_Ng_y(hit, args->N, i) = n.y;
+    RTCHitN_Ng_z(hit, args->N, i) = n.z;
+    RTCHitN_u(hit, args->N, i) = 0.0f;
+    RTCHitN_v(hit, args->N, i) = 0.0f;
+    RTCHitN_primID(hit, args->N, i) = args->primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
+    RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+  }
+}
+
+void sphere_occluded_cb(const RTCOccludedFunctionNArguments* args) {
+  const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
+  RTCRayN* ray = args->ray;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    Vec3f o(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i));
+    Vec3f d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
+    sphere_object_ray(*s, o, d);
+    if (intersect_sphere(o, d, s->shape->center, s->shape->radius, RTCRayN_tnear(ray, args->N, i),
+                         RTCRayN_tfar(ray, args->N, i)))
+      RTCRayN_tfar(ray, args->N, i) = -kInfinity;  // Embree's "occluded" marker
+  }
+}
+
+// Embree's SSE loads may read up to 12 bytes past the last float3/uint3 element, so a caller's array is shared
+// only when its allocation extends at least one element beyond its size.
+template <typename T>
+bool shareable(const std::vector<T>& v) {
+  return v.capacity() > v.size();
+}
+
+void error_cb(void* user, RTCError, const char* message) {
+  auto* last = static_cast<std::string*>(user);
+  *last = message ? message : "unknown Embree error";
+}
+
+}  // namespace
+
+struct EmbreeAccel::Impl {
+  const WorldGeometry& geometry;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<RTCScene> prototype_scenes;  // null for prototypes no instance uses
+  std::vector<SphereData> sphere_data;
+  std::string last_error;
+  std::atomic<int64_t> bytes{0};
+  double build_seconds = 0;
+
+  explicit Impl(const WorldGeometry& g) : geometry(g) {}
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    for (RTCScene s : prototype_scenes)
+      if (s) rtcReleaseScene(s);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  void check(const char* what) {
+    const RTCError e = rtcGetDeviceError(device);
+    if (e != RTC_ERROR_NONE)
+      throw Error(std::string("Embree: ") + what + " failed: " + (last_error.empty() ? "error code " + std::to_string(int(e)) : last_error));
+  }
+
+  RTCGeometry triangle_geometry(const TriangleMesh& m) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    const size_t nv = m.p.size(), nt = m.triangle_count();
+    if (shareable(m.p)) {
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.p.data(), 0, sizeof(Vec3f), nv);
+    } else {
+      void* dst = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3f), nv);
+      if (dst) std::memcpy(dst, m.p.data(), nv * sizeof(Vec3f));
+    }
+    if (shareable(m.idx)) {
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.idx.data(), 0,
+                                 3 * sizeof(uint32_t), nt);
+    } else {
+      void* dst = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), nt);
+      if (dst) std::memcpy(dst, m.idx.data(), nt * 3 * sizeof(uint32_t));
+    }
+    rtcCommitGeometry(geom);
+    check("creating a triangle geometry");
+    return geom;
+  }
+
+  RTCScene new_scene() {
+    RTCScene s = rtcNewScene(device);
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    return s;
+  }
+
+  void build() {
+    const auto start = std::chrono::steady_clock::now();
+    device = rtcNewDevice(nullptr);
+    if (!device) throw Error("Embree: cannot create a device (error code " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    rtcSetDeviceErrorFunction(device, error_cb, &last_error);
+    rtcSetDeviceMemoryMonitorFunction(
+        device,
+        [](void* user, ssize_t delta, bool) {
+          static_cast<std::atomic<int64_t>*>(user)->fetch_add(int64_t(delta), std::memory_order_relaxed);
+          return true;
+        },
+        &bytes);
+    scene = new_scene();
+    sphere_data.reserve(geometry.spheres.size());  // callbacks keep pointers into it
+    prototype_scenes.assign(geometry.prototypes.size(), nullptr);
+
+    const auto& shapes = geometry.shapes;
+    for (uint32_t id = 0; id < shapes.size(); ++id) {
+      const Shape& s = shapes[id];
+      RTCGeometry geom = nullptr;
+      if (s.kind == ShapeKind::Mesh) {
+        if (geometry.meshes[s.index].triangle_count() == 0) continue;
+        geom = triangle_geometry(geometry.meshes[s.index]);
+      } else if (s.kind == ShapeKind::Sphere) {
+        const SphereShape& sph = geometry.spheres[s.index];
+        sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse()});
+        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(geom, 1);
+        rtcSetGeometryUserData(geom, &sphere_data.back());
+        rtcSetGeometryBoundsFunction(geom, sphere_bounds_cb, nullptr);
+        rtcSetGeometryIntersectFunction(geom, sphere_intersect_cb);
+        rtcSetGeometryOccludedFunction(geom, sphere_occluded_cb);
+        rtcCommitGeometry(geom);
+      } else {
+        const MeshInstance& inst = geometry.instances[s.index];
+        if (geometry.prototypes[inst.prototype].triangle_count() == 0) continue;
+        RTCScene& proto = prototype_scenes[inst.prototype];
+        if (!proto) {
+          proto = new_scene();
+          RTCGeometry tri = triangle_geometry(geometry.prototypes[inst.prototype]);
+          rtcAttachGeometryByID(proto, tri, 0);
+          rtcReleaseGeometry(tri);
+          rtcCommitScene(proto);
+          check("building an instance prototype");
+        }
+        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, proto);
+        float xfm[12];
+        const auto& m = inst.to_world.matrix().m;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 4; ++c) xfm[4 * r + c] = m[r][c];
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+        rtcCommitGeometry(geom);
+      }
+      rtcAttachGeometryByID(scene, geom, id);
+      rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(scene);
+    check("building the scene");
+    build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+};
+
+EmbreeAccel::EmbreeAccel(const WorldGeometry& geometry) : impl_(std::make_unique<Impl>(geometry)) { impl_->build(); }
+
+EmbreeAccel::~EmbreeAccel() = default;
+
+namespace {
+RTCRay to_rtc(const Ray& r) {
+  RTCRay x;
+  x.org_x = r.o.x;
+  x.org_y = r.o.y;
+  x.org_z = r.o.z;
+  x.tnear = r.tmin;
+  x.dir_x = r.d.x;
+  x.dir_y = r.d.y;
+  x.dir_z = r.d.z;
+  x.time = 0.0f;
+  x.tfar = r.tmax;
+  x.mask = 0xffffffffu;
+  x.id = 0;
+  x.flags = 0;
+  return x;
+}
+}  // namespace
+
+bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh;
+  rh.ray = to_rtc(ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  const WorldGeometry& g = impl_->geometry;
+  hit.t = rh.ray.tfar;
+  hit.shape = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? rh.hit.instID[0] : rh.hit.geomID;
+  const Shape& s = g.shapes[hit.shape];
+  if (s.kind == ShapeKind::Sphere) {
+    hit.prim = 0;
+    hit.u = hit.v = 0.0f;
+    hit.ng = Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  } else {
+    hit.prim = rh.hit.primID;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    // Recomputed from the vertices so both accelerators report the same (v1-v0)x(v2-v0) convention.
+    hit.ng = triangle_world_normal(g, hit.shape, hit.prim);
+  }
+  return true;
+}
+
+bool EmbreeAccel::occluded(const Ray& ray) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay r = to_rtc(ray);
+  rtcOccluded1(impl_->scene, &ctx, &r);
+  return r.tfar == -kInfinity;
+}
+
+AccelStats EmbreeAccel::stats() const {
+  return {"embree", impl_->build_seconds, size_t(std::max<int64_t>(0, impl_->bytes.load()))};
+}
+
+}  // namespace kiln

@@ -1,0 +1,51 @@
+#include "renderer/accel/shape_bounds.h"
+
+namespace kiln {
+
+Bounds3f sphere_world_bounds(const SphereShape& s) {
+  const auto& m = s.to_world.matrix().m;
+  const bool affine = m[3][0] == 0.0f && m[3][1] == 0.0f && m[3][2] == 0.0f && m[3][3] == 1.0f;
+  const Bounds3f object(s.center - Vec3f(s.radius), s.center + Vec3f(s.radius));
+  if (!affine) return s.to_world.bounds(object);
+  const Vec3f c = s.to_world.point(s.center);
+  Vec3f half;
+  for (int i = 0; i < 3; ++i) half[i] = s.radius * length(Vec3f(m[i][0], m[i][1], m[i][2]));
+  return {c - half, c + half};
+}
+
+Bounds3f mesh_bounds(const TriangleMesh& m) {
+  Bounds3f b;
+  // Only referenced vertices count: unused vertices must not inflate the box.
+  for (uint32_t i : m.idx) b.extend(m.p[i]);
+  return b;
+}
+
+Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst) {
+  return inst.to_world.bounds(mesh_bounds(g.prototypes[inst.prototype]));
+}
+
+Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s) {
+  switch (s.kind) {
+    case ShapeKind::Mesh: return mesh_bounds(g.meshes[s.index]);
+    case ShapeKind::Sphere: return sphere_world_bounds(g.spheres[s.index]);
+    case ShapeKind::Instance: return instance_world_bounds(g, g.instances[s.index]);
+  }
+  return {};
+}
+
+Bounds3f geometry_bounds(const WorldGeometry& g) {
+  Bounds3f b;
+  for (const Shape& s : g.shapes) b.extend(shape_world_bounds(g, s));
+  return b;
+}
+
+size_t geometry_triangle_count(const WorldGeometry& g) {
+  size_t n = 0;
+  for (const Shape& s : g.shapes) {
+    if (s.kind == ShapeKind::Mesh) n += g.meshes[s.index].triangle_count();
+    if (s.kind == ShapeKind::Instance) n += g.prototypes[g.instances[s.index].prototype].triangle_count();
+  }
+  return n;
+}
+
+}  // namespace kiln

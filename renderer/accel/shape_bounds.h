@@ -1,0 +1,21 @@
+// World-space bounds of the shapes accelerators are built over. Lives in kiln_accel so the accelerators (and
+// their tests, which link kiln_accel only) need nothing from the rest of the renderer; WorldGeometry::bounds and
+// WorldGeometry::triangle_count delegate here.
+#pragma once
+#include <cstddef>
+
+#include "renderer/world_geometry.h"
+
+namespace kiln {
+
+// Tight bounds of a (possibly ellipsoidal) sphere: for an affine map the extent along world axis i is the radius
+// times the length of row i of the linear part.
+Bounds3f sphere_world_bounds(const SphereShape& s);
+Bounds3f mesh_bounds(const TriangleMesh& m);
+Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst);
+Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s);
+
+Bounds3f geometry_bounds(const WorldGeometry& g);
+size_t geometry_triangle_count(const WorldGeometry& g);  // instanced triangles counted once per instance
+
+}  // namespace kiln

@@ -1,0 +1,40 @@
+// The kiln subcommands, callable from main() and from tests.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderer/accel/accelerator.h"
+#include "renderer/render.h"
+
+namespace kiln {
+
+struct RenderArgs {
+  std::string scene;
+  std::string out_dir = "out";
+  std::optional<std::string> camera;  // camera id; all cameras when absent
+  std::optional<uint32_t> spp;
+  int threads = 0;                    // 0: all cores
+  uint64_t seed = 0;
+  std::optional<std::string> stats_path;
+  bool quiet = false;
+  AccelKind accel = AccelKind::Embree;
+  // Integrator overrides.
+  std::optional<std::string> strategy;  // uniform | cosine | brdf | nee | mis
+  std::optional<bool> rr;
+  std::optional<int> max_depth;
+  float clamp = 0.0f;
+  bool all_features = false;
+  int subdivide = -1;
+  bool reverse_tiles = false;
+};
+
+int cmd_render(const RenderArgs& args);
+int cmd_info(const std::string& scene_path, int subdivide);
+
+// Runs fn, mapping kiln::Error (bad input) to a one-line message and exit code 2.
+int run_guarded(const std::function<int()>& fn);
+
+}  // namespace kiln

@@ -1,0 +1,79 @@
+#include <cstdio>
+#include <map>
+
+#include "renderer/cli/commands.h"
+#include "renderer/integrator.h"
+#include "renderer/world.h"
+#include "scenes/loader.h"
+
+namespace kiln {
+namespace {
+
+const char* brdf_name(BrdfKind k) {
+  switch (k) {
+    case BrdfKind::OriginalPhong: return "OriginalPhong";
+    case BrdfKind::ModifiedPhong: return "ModifiedPhong";
+    case BrdfKind::OriginalBlinnPhong: return "OriginalBlinnPhong";
+    case BrdfKind::ModifiedBlinnPhong: return "ModifiedBlinnPhong";
+    case BrdfKind::TorranceSparrow: return "TorranceSparrow";
+    case BrdfKind::Lambert: return "Lambert";
+  }
+  return "?";
+}
+
+const char* material_type_name(MaterialType t) {
+  switch (t) {
+    case MaterialType::Plain: return "plain";
+    case MaterialType::Mirror: return "mirror";
+    case MaterialType::Dielectric: return "dielectric";
+    case MaterialType::Conductor: return "conductor";
+  }
+  return "?";
+}
+
+}  // namespace
+
+int cmd_info(const std::string& path, int subdivide) {
+  LoadOptions lo;
+  lo.subdivide = subdivide;
+  const SceneDesc s = load_scene(path, lo);
+  WorldOptions wo;
+  wo.build_accelerator = false;
+  const auto world = build_world(s, wo);
+  std::printf("scene: %s (%s)\n", path.c_str(), s.format.c_str());
+  std::printf("cameras: %zu\n", s.cameras.size());
+  for (const CameraDesc& c : s.cameras) {
+    const IntegratorSettings is = settings_for_camera(c, s);
+    std::printf("  camera %s: %dx%d, %d spp, %s -> %s%s\n", c.id.c_str(), c.width, c.height, c.num_samples,
+                is.describe().c_str(), c.image_name.c_str(), c.tonemap ? " (Photographic tonemap)" : "");
+  }
+  size_t triangles = 0, emissive = 0;
+  for (const MeshDesc& m : s.meshes) {
+    triangles += m.indices.size() / 3;
+    if (m.emission) ++emissive;
+  }
+  std::printf("meshes: %zu (%zu triangles, %zu emissive), spheres: %zu, instances: %zu\n", s.meshes.size(), triangles,
+              emissive, s.spheres.size(), s.instances.size());
+  std::map<std::string, int> brdfs;
+  for (const BrdfDesc& b : s.brdfs) ++brdfs[std::string(brdf_name(b.kind)) + (b.normalized ? " (normalized)" : "")];
+  std::printf("materials: %zu", s.materials.size());
+  std::map<std::string, int> types;
+  for (const MaterialDesc& m : s.materials) ++types[material_type_name(m.type)];
+  for (const auto& [k, v] : types) std::printf(", %d %s", v, k.c_str());
+  std::printf("\nbrdfs:");
+  if (brdfs.empty()) std::printf(" none (classic Blinn-Phong)");
+  for (const auto& [k, v] : brdfs) std::printf(" %s x%d", k.c_str(), v);
+  const WorldStats& ws = world->stats;
+  std::printf("\nlights: ambient %s, point %zu, spot %zu, directional %zu, area %zu, mesh %zu, sphere %zu, env %zu\n",
+              s.ambient_light.is_black() ? "off" : "on", ws.point_lights, ws.spot_lights, ws.directional_lights,
+              ws.area_lights, ws.mesh_lights, ws.sphere_lights, s.env_lights.size());
+  std::printf("features: %s\n", describe_features(world->features).c_str());
+  std::printf("needs: spheres %s, instances %s, textures %s, cone sampler %s\n",
+              (world->features & kFeatureSpheres) ? "yes" : "no", (world->features & kFeatureInstances) ? "yes" : "no",
+              (world->features & kFeatureTextures) ? "yes" : "no", ws.cone_sampler_built ? "yes" : "no");
+  for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
+  for (const std::string& u : s.unsupported) std::printf("not rendered yet: %s\n", u.c_str());
+  return 0;
+}
+
+}  // namespace kiln

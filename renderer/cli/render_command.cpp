@@ -1,0 +1,228 @@
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "core/error.h"
+#include "renderer/cli/commands.h"
+#include "renderer/image_io.h"
+#include "renderer/tonemap.h"
+#include "renderer/world.h"
+#include "scenes/loader.h"
+
+namespace kiln {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_signal(int) { g_interrupted.store(true); }
+
+// TSC ticks per second, measured once against the steady clock (for the ray-query time share).
+double tsc_frequency() {
+  static const double f = [] {
+    const auto t0 = std::chrono::steady_clock::now();
+    const uint64_t c0 = __builtin_ia32_rdtsc();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const uint64_t c1 = __builtin_ia32_rdtsc();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return double(c1 - c0) / s;
+  }();
+  return f;
+}
+
+void apply_overrides(IntegratorSettings& s, const RenderArgs& a) {
+  if (a.strategy) {
+    const std::string& st = *a.strategy;
+    s.kind = RendererKind::PathTracing;
+    s.course_roulette = false;
+    if (s.max_depth < 0) s.max_depth = 8;
+    if (st == "uniform" || st == "cosine" || st == "brdf") {
+      s.directions = st == "uniform" ? DirectionSampling::Uniform
+                     : st == "cosine" ? DirectionSampling::Cosine
+                                      : DirectionSampling::Brdf;
+      s.nee = s.mis = false;
+    } else if (st == "nee") {
+      s.directions = DirectionSampling::Brdf;
+      s.nee = true;
+      s.mis = false;
+    } else if (st == "mis") {
+      s.directions = DirectionSampling::Brdf;
+      s.nee = s.mis = true;
+    } else if (st == "direct") {
+      s.kind = RendererKind::RayTracing;
+    } else {
+      throw Error("--strategy", "", "unknown strategy '" + st + "' (uniform, cosine, brdf, nee, mis, direct)");
+    }
+  }
+  if (a.rr) {
+    s.russian_roulette = *a.rr;
+    if (!*a.rr) s.course_roulette = false;
+  }
+  if (a.max_depth) s.max_depth = *a.max_depth;
+  if (s.max_depth < 0 && !s.russian_roulette) throw Error("--max-depth", "", "unlimited depth needs --rr");
+  s.clamp = a.clamp;
+}
+
+std::string stem_of(const std::string& image_name, const std::string& fallback) {
+  const std::string stem = std::filesystem::path(image_name).stem().string();
+  return stem.empty() ? fallback : stem;
+}
+
+nlohmann::json world_stats_json(const World& w) {
+  const WorldStats& s = w.stats;
+  return {{"meshes", s.meshes},
+          {"triangles", s.triangles},
+          {"spheres", s.spheres},
+          {"instances", s.instances},
+          {"materials", s.materials},
+          {"lights",
+           {{"point", s.point_lights},
+            {"spot", s.spot_lights},
+            {"directional", s.directional_lights},
+            {"area", s.area_lights},
+            {"mesh", s.mesh_lights},
+            {"sphere", s.sphere_lights}}},
+          {"built",
+           {{"sphere_geometry", s.sphere_geometry_built},
+            {"cone_sampler", s.cone_sampler_built},
+            {"light_selector", s.light_selector_built},
+            {"accelerator", w.accel->stats().name}}},
+          {"features", describe_features(w.features)},
+          {"accel_build_seconds", w.accel->stats().build_seconds},
+          {"accel_bytes", w.accel->stats().bytes},
+          {"world_build_seconds", s.build_seconds},
+          {"unsupported", w.unsupported}};
+}
+
+}  // namespace
+
+int cmd_render(const RenderArgs& args) {
+  const auto t_start = std::chrono::steady_clock::now();
+  std::unique_ptr<tbb::global_control> threads;
+  if (args.threads > 0)
+    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(args.threads));
+
+  LoadOptions lo;
+  lo.subdivide = args.subdivide;
+  const SceneDesc scene = load_scene(args.scene, lo);
+  const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  if (scene.cameras.empty()) throw Error(args.scene, "", "scene has no camera");
+  std::vector<const CameraDesc*> cameras;
+  for (const CameraDesc& c : scene.cameras)
+    if (!args.camera || c.id == *args.camera) cameras.push_back(&c);
+  if (cameras.empty()) throw Error(args.scene, "", "no camera with id '" + *args.camera + "'");
+
+  WorldOptions wo;
+  wo.accel = args.accel;
+  const auto world = build_world(scene, wo);
+  if (!args.quiet) {
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", args.scene.c_str(), w.c_str());
+    for (const std::string& u : scene.unsupported)
+      std::fprintf(stderr, "kiln: warning: %s: not rendered yet: %s\n", args.scene.c_str(), u.c_str());
+  }
+
+  g_interrupted.store(false);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  nlohmann::json stats;
+  stats["scene"] = args.scene;
+  stats["kiln_version"] = KILN_VERSION;
+  stats["parse_seconds"] = parse_seconds;
+  stats["world"] = world_stats_json(*world);
+  stats["cameras"] = nlohmann::json::array();
+  bool interrupted = false;
+
+  for (const CameraDesc* cd : cameras) {
+    const Camera camera(*cd);
+    IntegratorSettings settings = settings_for_camera(*cd, scene);
+    apply_overrides(settings, args);
+    settings.features = args.all_features ? kFeatureAll : world->features;
+    const uint32_t spp = args.spp.value_or(uint32_t(std::max(1, cd->num_samples)));
+    RenderOptions ro;
+    ro.seed = args.seed;
+    ro.spp_total = spp;
+    ro.progress = !args.quiet;
+    ro.cancel = &g_interrupted;
+    ro.reverse_tile_order = args.reverse_tiles;
+    Film film(camera.width(), camera.height());
+    if (!args.quiet)
+      std::fprintf(stderr, "kiln: camera %s: %dx%d, %u spp, %s\n", cd->id.c_str(), camera.width(), camera.height(), spp,
+                   settings.describe().c_str());
+    const RenderStats rs = render_samples(*world, camera, settings, ro, 0, spp, film);
+    interrupted = rs.cancelled;
+
+    const std::string stem = stem_of(cd->image_name, "camera" + cd->id);
+    const std::string exr = (std::filesystem::path(args.out_dir) / (stem + ".exr")).string();
+    const std::string png = (std::filesystem::path(args.out_dir) / (stem + ".png")).string();
+    const Image img = film.mean();
+    Metadata meta = {{"kiln:version", KILN_VERSION},
+                     {"kiln:scene", args.scene},
+                     {"kiln:camera", cd->id},
+                     {"kiln:spp", std::to_string(spp)},
+                     {"kiln:seed", std::to_string(args.seed)},
+                     {"kiln:integrator", settings.describe()},
+                     {"kiln:render_seconds", std::to_string(rs.seconds)},
+                     {"kiln:incomplete", rs.cancelled ? "true" : "false"}};
+    write_exr(exr, img, {}, meta);
+    write_png(png, to_ldr(img, preview_for_camera(*cd, scene)), img.width(), img.height());
+
+    const double query_seconds = double(rs.rays.query_cycles) / tsc_frequency();
+    const double mrays = double(rs.rays.total()) / std::max(rs.seconds, 1e-9) / 1e6;
+    if (rs.has_nan && !args.quiet)
+      std::fprintf(stderr, "kiln: warning: %llu non-finite samples dropped (first at pixel %d,%d sample %llu)\n",
+                   (unsigned long long)rs.rays.nan_samples, rs.nan_x, rs.nan_y, (unsigned long long)rs.nan_sample);
+    if (!args.quiet)
+      std::fprintf(stderr,
+                   "kiln: %.2fs, %.2f Mrays/s (primary %llu, shadow %llu, indirect %llu), %.0f%% of thread time in "
+                   "ray queries\n",
+                   rs.seconds, mrays, (unsigned long long)rs.rays.primary, (unsigned long long)rs.rays.shadow,
+                   (unsigned long long)rs.rays.indirect,
+                   100.0 * query_seconds / std::max(1e-9, rs.seconds * double(tbb::this_task_arena::max_concurrency())));
+
+    std::printf("%s\n%s\n", exr.c_str(), png.c_str());
+    std::fflush(stdout);
+
+    const double query_share = query_seconds / std::max(1e-9, rs.seconds * double(tbb::this_task_arena::max_concurrency()));
+    nlohmann::json cam = {{"id", cd->id},
+                                {"exr", exr},
+                                {"png", png},
+                                {"width", camera.width()},
+                                {"height", camera.height()},
+                                {"spp", spp},
+                                {"integrator", settings.describe()},
+                                {"render_seconds", rs.seconds},
+                                {"rays", {{"primary", rs.rays.primary}, {"shadow", rs.rays.shadow}, {"indirect", rs.rays.indirect}}},
+                                {"mrays_per_second", mrays},
+                                {"ray_query_share", query_share},
+                                {"nan_samples", rs.rays.nan_samples},
+                                {"incomplete", rs.cancelled}};
+    stats["cameras"].push_back(cam);
+    if (interrupted) break;
+  }
+  stats["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  if (args.stats_path) {
+    const std::string tmp = *args.stats_path + ".tmp";
+    {
+      std::ofstream f(tmp);
+      if (!f) throw Error(*args.stats_path, "", "cannot write stats file");
+      f << stats.dump(2) << "\n";
+    }
+    std::filesystem::rename(tmp, *args.stats_path);
+  }
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (interrupted) {
+    std::fprintf(stderr, "kiln: interrupted; wrote the samples so far (marked incomplete)\n");
+    return 130;
+  }
+  return 0;
+}
+
+}  // namespace kiln

@@ -1,0 +1,29 @@
+// Per-scene feature mask (Cycles kernel/features.h style): what the scene contains, so that only those parts
+// are built and the integrator can skip the code paths the scene lacks.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace kiln {
+
+enum Feature : uint32_t {
+  kFeatureTriangles = 1u << 0,
+  kFeatureSpheres = 1u << 1,
+  kFeatureInstances = 1u << 2,
+  kFeatureSmoothNormals = 1u << 3,
+  kFeaturePointLights = 1u << 4,      // point, spot and directional (delta) lights
+  kFeatureAreaLights = 1u << 5,       // course square AreaLight
+  kFeatureMeshLights = 1u << 6,
+  kFeatureSphereLights = 1u << 7,
+  kFeatureAmbient = 1u << 8,
+  kFeatureGlossy = 1u << 9,           // Phong / Blinn-Phong / Torrance-Sparrow lobes
+  kFeatureDelta = 1u << 10,           // mirror / dielectric / conductor
+  kFeatureDielectric = 1u << 11,
+  kFeatureTextures = 1u << 12,        // parsed but not rendered yet
+  kFeatureDepthOfField = 1u << 13,
+  kFeatureAll = 0xffffffffu,
+};
+
+std::string describe_features(uint32_t mask);
+
+}  // namespace kiln

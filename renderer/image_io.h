@@ -1,0 +1,35 @@
+// EXR / PNG output through OpenImageIO. Every file is written to a temporary name in the target folder and
+// renamed into place, so a crash or an interrupt never leaves a half-written image.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image.h"
+
+namespace kiln {
+
+// An extra image layer written next to R,G,B (e.g. Albedo.R/G/B, N.X/Y/Z, Z).
+struct AovLayer {
+  std::vector<std::string> channels;  // full channel names
+  std::vector<float> data;            // interleaved, channels.size() floats per pixel
+};
+
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
+// Linear float32 (never half: values above 65504 must survive) with string metadata attributes.
+void write_exr(const std::string& path, const Image& rgb, const std::vector<AovLayer>& aovs, const Metadata& meta);
+void write_png(const std::string& path, const std::vector<uint8_t>& rgb8, int width, int height);
+
+struct ExrFile {
+  Image rgb;
+  std::vector<AovLayer> aovs;  // every channel other than R, G, B (one layer per channel here)
+  Metadata meta;
+};
+// Throws kiln::Error when the file cannot be read or has no R,G,B channels.
+ExrFile read_exr(const std::string& path);
+// Any image OIIO reads (PNG references), as float RGB in [0,1] for 8-bit files.
+Image read_image(const std::string& path);
+
+}  // namespace kiln

@@ -1,0 +1,21 @@
+// A ray-surface hit resolved for shading: position, normals, material and emitter.
+#pragma once
+#include "core/frame.h"
+#include "core/ray.h"
+#include "renderer/world.h"
+
+namespace kiln {
+
+struct SurfaceInteraction {
+  Vec3f p;
+  Vec3f ng;         // unit geometric normal; triangles: (v1-v0)x(v2-v0) after transformation, spheres: outward
+  Vec3f ns;         // unit shading normal, in the same hemisphere as ng
+  float t = 0;
+  const Material* material = nullptr;
+  int light = -1;   // index into World::lights when the surface emits
+  uint32_t shape = 0, prim = 0;
+};
+
+SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hit& hit);
+
+}  // namespace kiln

@@ -1,0 +1,139 @@
+// Unidirectional path tracer: uniform / cosine / BRDF direction sampling, next event estimation through the
+// light selector, Russian roulette, and MIS (power heuristic) between NEE and direction sampling.
+//
+// Emission found by a sampled direction is counted in full for camera rays, after delta bounces and when NEE is
+// off; with NEE and no MIS it is skipped (NEE already counted it); with MIS it is weighted.
+#include "renderer/integrator.h"
+#include "renderer/ray_query.h"
+#include "renderer/shading.h"
+
+namespace kiln {
+namespace {
+
+struct DirectionSample {
+  Vec3f wi_local;
+  Rgb f;
+  float pdf = 0;
+  bool specular = false;
+  bool transmission = false;
+};
+
+// Solid-angle pdf with which the active strategy would have produced wi_l (for MIS weights).
+float strategy_pdf(const IntegratorSettings& s, const Material& m, Vec3f wo_l, Vec3f wi_l) {
+  switch (s.directions) {
+    case DirectionSampling::Brdf:
+      return m.pdf(wo_l, wi_l);
+    case DirectionSampling::Cosine:
+      return (1.0f - m.delta_probability(wo_l)) * cosine_hemisphere_pdf(wi_l.z);
+    case DirectionSampling::Uniform:
+      return wi_l.z > 0.0f ? (1.0f - m.delta_probability(wo_l)) * uniform_hemisphere_pdf() : 0.0f;
+  }
+  return 0.0f;
+}
+
+std::optional<DirectionSample> sample_direction(const IntegratorSettings& s, const Material& m, Vec3f wo_l, Rng& rng) {
+  const float uc = rng.next_float();
+  const Vec2f u = rng.next_2d();
+  if (s.directions == DirectionSampling::Brdf) {
+    auto bs = m.sample(wo_l, uc, u);
+    if (!bs || bs->pdf <= 0.0f) return std::nullopt;
+    return DirectionSample{bs->wi, bs->f, bs->pdf, bs->is_specular(), bs->is_transmission()};
+  }
+  const float pd = m.delta_probability(wo_l);
+  if (uc < pd) {
+    auto bs = m.sample_delta(wo_l, uc / pd, u);
+    if (!bs || bs->pdf <= 0.0f) return std::nullopt;
+    return DirectionSample{bs->wi, bs->f, bs->pdf * pd, true, bs->is_transmission()};
+  }
+  // Surface lobe through a BRDF-independent warp; the hemisphere is the one wo lies in (opaque surfaces are
+  // already oriented so that wo.z > 0).
+  Vec3f wi = s.directions == DirectionSampling::Cosine ? sample_cosine_hemisphere(u) : sample_uniform_hemisphere(u);
+  float pdf = s.directions == DirectionSampling::Cosine ? cosine_hemisphere_pdf(wi.z) : uniform_hemisphere_pdf();
+  if (wo_l.z < 0.0f) wi.z = -wi.z;
+  pdf *= (1.0f - pd);
+  if (pdf <= 0.0f) return std::nullopt;
+  return DirectionSample{wi, m.eval(wo_l, wi), pdf, false, false};
+}
+
+}  // namespace
+
+Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ray, Rng& rng, RayCounters& c) {
+  Rgb L(0.0f), beta(1.0f);
+  Ray ray = camera_ray;
+  bool specular_bounce = true;  // the camera ray counts as one: emitters seen directly are always counted
+  float prev_pdf = 0.0f;
+  LightQuery prev{};
+  const bool use_nee = s.nee && !w.lights.empty();
+  const int max_depth = s.max_depth < 0 ? kMaxPathVertices : std::min(s.max_depth, kMaxPathVertices);
+
+  for (int depth = 0;; ++depth) {
+    Hit hit;
+    if (!query_intersect(w, ray, hit, c, depth == 0 ? c.primary : c.indirect)) {
+      if (depth == 0) L += beta * w.background;
+      break;
+    }
+    SurfaceInteraction si = make_interaction(w, ray, hit);
+    const Vec3f wo = -ray.d;
+    if (si.light >= 0) {
+      const Light& light = w.lights[size_t(si.light)];
+      const Rgb le = emitted(light, si.ng, wo);
+      if (!le.is_black()) {
+        if (specular_bounce || !use_nee) {
+          L += beta * le;
+        } else if (s.mis) {
+          const float light_pdf = pdf_li(light, prev, si.p, si.ng, si.prim) * w.light_selector.pmf(size_t(si.light));
+          L += beta * le * power_heuristic(prev_pdf, light_pdf);
+        }
+      }
+    }
+    if (!si.material || depth >= max_depth) break;
+    const Material& m = *si.material;
+    if (exits_dielectric(si, ray.d)) beta *= m.transmittance(hit.t * length(ray.d));
+    orient_normals(si, wo);
+    const Frame frame(si.ns);
+    const Vec3f wo_l = frame.to_local(wo);
+
+    if (use_nee && m.has_surface()) {
+      float pmf = 0.0f;
+      const size_t li = w.light_selector.sample(rng.next_float(), &pmf);
+      const Vec2f u = rng.next_2d();
+      if (pmf > 0.0f) {
+        const auto ls = sample_li(w.lights[li], LightQuery{si.p, si.ns}, u);
+        if (ls && ls->pdf > 0.0f && !ls->li.is_black() && valid_reflection_side(si, wo, ls->wi)) {
+          const Vec3f wi_l = frame.to_local(ls->wi);
+          const Rgb f = m.eval(wo_l, wi_l);
+          if (!f.is_black() && !query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light), c)) {
+            const float light_pdf = ls->pdf * pmf;
+            const float weight = (s.mis && !ls->delta) ? power_heuristic(light_pdf, strategy_pdf(s, m, wo_l, wi_l)) : 1.0f;
+            L += beta * f * ls->li * (abs_cos_theta(wi_l) * weight / light_pdf);
+          }
+        }
+      }
+    }
+
+    const auto ds = sample_direction(s, m, wo_l, rng);
+    if (!ds) break;
+    const Vec3f wi = frame.to_world(ds->wi_local);
+    if (!ds->transmission && !valid_reflection_side(si, wo, wi)) break;
+    beta *= ds->f * (abs_cos_theta(ds->wi_local) / ds->pdf);
+    if (beta.is_black() || !beta.is_finite()) break;
+    specular_bounce = ds->specular;
+    prev_pdf = ds->pdf;
+    prev = LightQuery{si.p, si.ns};
+
+    if (s.russian_roulette && depth >= s.rr_min_depth) {
+      // Survival probability from the throughput; dividing by it keeps the estimator unbiased.
+      const float survive = std::min(1.0f, beta.max_component());
+      if (rng.next_float() >= survive) break;
+      beta *= 1.0f / survive;
+    }
+    ray = spawn_ray(si.p, si.ng, wi);
+  }
+  if (s.clamp > 0.0f) {
+    const float mx = L.max_component();
+    if (mx > s.clamp) L *= s.clamp / mx;
+  }
+  return L;
+}
+
+}  // namespace kiln

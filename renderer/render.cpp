@@ -1,0 +1,130 @@
+#include "renderer/render.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+
+namespace kiln {
+namespace {
+
+struct Tile {
+  int x0, y0, x1, y1;
+};
+
+// Pixel sample position: the centre for 1 spp; otherwise stratified over a sqrt(n) x sqrt(n) grid for the first
+// n^2 sample indices (jittered inside each stratum), then plain jitter. Depends only on the absolute sample
+// index, so spp ranges rendered separately merge into the same image.
+Vec2f pixel_offset(uint64_t sample, uint32_t spp_total, Rng& rng) {
+  if (spp_total <= 1) return {0.5f, 0.5f};
+  const uint32_t n = uint32_t(std::sqrt(double(spp_total)));
+  const Vec2f j = rng.next_2d();
+  if (sample < uint64_t(n) * n) {
+    const float sx = float(sample % n), sy = float(sample / n);
+    return {(sx + j.x) / float(n), (sy + j.y) / float(n)};
+  }
+  return j;
+}
+
+class Progress {
+ public:
+  Progress(bool enabled, size_t total) : enabled_(enabled), total_(total), start_(clock::now()) {}
+  void tile_done() {
+    if (!enabled_) return;
+    const size_t done = ++done_;
+    std::unique_lock lock(mutex_, std::try_to_lock);
+    if (!lock.owns_lock()) return;
+    const double t = std::chrono::duration<double>(clock::now() - start_).count();
+    if (done != total_ && t - last_ < 0.25) return;
+    last_ = t;
+    const double frac = double(done) / double(total_);
+    const double eta = frac > 0 ? t / frac - t : 0.0;
+    const int bar = int(frac * 30.0);
+    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %6.1fs  ETA %6.1fs", bar, "##############################",
+                 30 - bar, "", 100.0 * frac, t, eta);
+    if (done == total_) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  bool enabled_;
+  size_t total_;
+  std::atomic<size_t> done_{0};
+  std::mutex mutex_;
+  clock::time_point start_;
+  double last_ = -1.0;
+};
+
+}  // namespace
+
+RenderStats render_samples(const World& world, const Camera& camera, const IntegratorSettings& settings,
+                           const RenderOptions& options, uint32_t first, uint32_t last, Film& film) {
+  const auto start = std::chrono::steady_clock::now();
+  Crop crop = options.crop.value_or(Crop{0, camera.width(), 0, camera.height()});
+  std::vector<Tile> tiles;
+  const int ts = std::max(1, options.tile_size);
+  for (int y = crop.y0; y < crop.y1; y += ts)
+    for (int x = crop.x0; x < crop.x1; x += ts)
+      tiles.push_back(Tile{x, y, std::min(x + ts, crop.x1), std::min(y + ts, crop.y1)});
+  if (options.reverse_tile_order) std::reverse(tiles.begin(), tiles.end());
+
+  std::vector<RenderStats> tile_stats(tiles.size());
+  Progress progress(options.progress, tiles.size());
+  // One task per tile; work stealing balances uneven tiles.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t ti = range.begin(); ti != range.end(); ++ti) {
+      if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+        tile_stats[ti].cancelled = true;
+        continue;
+      }
+      const Tile& t = tiles[ti];
+      RenderStats& st = tile_stats[ti];
+      for (int y = t.y0; y < t.y1; ++y)
+        for (int x = t.x0; x < t.x1; ++x) {
+          PixelSum& px = film.at(x, y);
+          for (uint32_t s = first; s < last; ++s) {
+            Rng rng = pixel_sample_rng(options.seed, uint32_t(x), uint32_t(y), s);
+            const Vec2f off = pixel_offset(s, options.spp_total, rng);
+            const Vec2f lens = rng.next_2d();
+            const Ray ray = camera.generate_ray(float(x) + off.x, float(y) + off.y, lens);
+            Rgb L = trace(world, settings, ray, rng, st.rays);
+            if (!L.is_finite() || L.has_negative()) {
+              if (!st.has_nan) {
+                st.has_nan = true;
+                st.nan_x = x;
+                st.nan_y = y;
+                st.nan_sample = s;
+              }
+              ++st.rays.nan_samples;
+              L = Rgb(0.0f);
+            }
+            px.r += L.r;
+            px.g += L.g;
+            px.b += L.b;
+            const double lum = L.luminance();
+            px.lum2 += lum * lum;
+          }
+          px.n += last - first;
+        }
+      progress.tile_done();
+    }
+  });
+
+  RenderStats total;
+  for (const RenderStats& st : tile_stats) {
+    total.rays.add(st.rays);
+    total.cancelled |= st.cancelled;
+    if (st.has_nan && (!total.has_nan || std::tie(st.nan_y, st.nan_x) < std::tie(total.nan_y, total.nan_x))) {
+      total.has_nan = true;
+      total.nan_x = st.nan_x;
+      total.nan_y = st.nan_y;
+      total.nan_sample = st.nan_sample;
+    }
+  }
+  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return total;
+}
+
+}  // namespace kiln

@@ -1,0 +1,48 @@
+// Shared shading helpers for the integrators.
+#pragma once
+#include "core/frame.h"
+#include "renderer/interaction.h"
+
+namespace kiln {
+
+// Beyond this many bounces a path always ends, even under unlimited-depth roulette (a white furnace with
+// albedo 1 would otherwise never terminate).
+inline constexpr int kMaxPathVertices = 1024;
+
+inline bool is_dielectric(const Material& m) { return std::holds_alternative<Dielectric>(m.delta); }
+
+// Opaque surfaces are two-sided: normals are flipped to the side the ray arrived from. Dielectrics keep their
+// outward orientation so that the local frame tells inside (wo.z < 0) from outside.
+inline void orient_normals(SurfaceInteraction& si, Vec3f wo) {
+  if (!is_dielectric(*si.material) && dot(wo, si.ng) < 0.0f) {
+    si.ng = -si.ng;
+    si.ns = -si.ns;
+  }
+}
+
+// True when a ray that arrived along d has travelled inside the closed dielectric it now leaves.
+inline bool exits_dielectric(const SurfaceInteraction& si, Vec3f d) {
+  return si.material && is_dielectric(*si.material) && dot(d, si.ng) > 0.0f;
+}
+
+// Opaque surfaces only reflect: a light direction below the geometric surface would leak light through it.
+inline bool valid_reflection_side(const SurfaceInteraction& si, Vec3f wo, Vec3f wi) {
+  return dot(wo, si.ng) * dot(wi, si.ng) > 0.0f;
+}
+
+// Course glossy reflection (spec §5 Roughness): perturb a delta direction inside the square of side `roughness`
+// around it; directions that fall below the surface are dropped.
+inline bool perturb_direction(Vec3f& wi_local, float roughness, Vec2f u) {
+  if (roughness <= 0.0f) return true;
+  Vec3f a, b;
+  coordinate_system(wi_local, a, b);
+  const Vec3f r = wi_local + (a * (u.x - 0.5f) + b * (u.y - 0.5f)) * roughness;
+  const float len = length(r);
+  if (!(len > 0.0f)) return false;
+  const Vec3f p = r / len;
+  if (p.z * wi_local.z <= 0.0f) return false;
+  wi_local = p;
+  return true;
+}
+
+}  // namespace kiln

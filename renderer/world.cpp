@@ -1,0 +1,193 @@
+#include "renderer/world.h"
+
+#include <chrono>
+
+#include "core/error.h"
+#include "scenes/material_mapping.h"
+
+namespace kiln {
+namespace {
+
+std::vector<Vec3f> transformed_points(const std::vector<Vec3f>& p, const Transform& t) {
+  if (t.is_identity()) return p;
+  std::vector<Vec3f> out(p.size());
+  for (size_t i = 0; i < p.size(); ++i) out[i] = t.point(p[i]);
+  return out;
+}
+
+// Area-weighted average of the adjacent face normals (the cross product's length is twice the area).
+std::vector<Vec3f> vertex_normals(const TriangleMesh& m) {
+  std::vector<Vec3f> n(m.p.size(), Vec3f(0.0f));
+  for (size_t t = 0; t < m.triangle_count(); ++t) {
+    const uint32_t a = m.idx[3 * t], b = m.idx[3 * t + 1], c = m.idx[3 * t + 2];
+    const Vec3f fn = cross(m.p[b] - m.p[a], m.p[c] - m.p[a]);
+    n[a] += fn;
+    n[b] += fn;
+    n[c] += fn;
+  }
+  for (Vec3f& v : n) {
+    const float len = length(v);
+    v = len > 0.0f ? v / len : Vec3f(0.0f);
+  }
+  return n;
+}
+
+void check_material(const SceneDesc& scene, int material, const std::string& name) {
+  if (material < 0 || size_t(material) >= scene.materials.size())
+    throw Error(scene.source_path, name, "has no valid material");
+}
+
+// The 2019 files spell the square light's radiance <Intensity>; a 2019 student renamed it Radiance and the 2021
+// version of the same scene says Radiance, so both are read as radiance L (README, "Light conventions").
+AreaLight make_area_light(const AreaLightDesc& d) {
+  if (d.edges) return AreaLight::parallelogram(d.position, (*d.edges)[0], (*d.edges)[1], d.radiance);
+  return AreaLight::square(d.position, d.normal, d.size, d.radiance);
+}
+
+}  // namespace
+
+std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  auto world = std::make_unique<World>();
+  World& w = *world;
+  w.background = scene.background;
+  w.ambient = scene.ambient_light;
+  w.unsupported = scene.unsupported;
+
+  w.materials.reserve(scene.materials.size());
+  for (const MaterialDesc& m : scene.materials) {
+    w.materials.push_back(build_material(m, scene));
+    const Material& built = w.materials.back();
+    if (std::holds_alternative<Phong>(built.surface) || std::holds_alternative<BlinnPhong>(built.surface) ||
+        std::holds_alternative<TorranceSparrow>(built.surface))
+      w.features |= kFeatureGlossy;
+    if (built.has_delta()) w.features |= kFeatureDelta;
+    if (std::holds_alternative<Dielectric>(built.delta)) w.features |= kFeatureDielectric;
+  }
+  w.stats.materials = w.materials.size();
+  if (!w.ambient.is_black()) w.features |= kFeatureAmbient;
+
+  WorldGeometry& g = w.geometry;
+  // Meshes: world-space copies for the scene, object-space prototypes for instanced bases.
+  std::vector<int> prototype_of(scene.meshes.size(), -1);
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshDesc& m = scene.meshes[i];
+    if (m.is_instance_base) {
+      prototype_of[i] = int(g.prototypes.size());
+      g.prototypes.push_back(TriangleMesh{m.positions, m.indices});
+    }
+    if (!m.visible || m.indices.empty()) continue;
+    check_material(scene, m.material, m.name);
+    TriangleMesh tm{transformed_points(m.positions, m.to_world), m.indices};
+    ShapeData sd;
+    sd.material = m.material;
+    sd.smooth = m.smooth || !m.normals.empty();
+    if (!m.normals.empty()) {
+      std::vector<Vec3f> n(m.normals.size());
+      for (size_t k = 0; k < n.size(); ++k) {
+        const Vec3f wn = m.to_world.normal(m.normals[k]);
+        const float len = length(wn);
+        n[k] = len > 0.0f ? wn / len : Vec3f(0.0f);
+      }
+      sd.normals = int(w.normals.size());
+      w.normals.push_back(std::move(n));
+    } else if (m.smooth) {
+      sd.normals = int(w.normals.size());
+      w.normals.push_back(vertex_normals(tm));
+    }
+    if (sd.smooth) w.features |= kFeatureSmoothNormals;
+    if (m.emission && !m.emission->is_black()) {
+      sd.light = int(w.lights.size());
+      w.lights.emplace_back(MeshLight(tm.p, tm.idx, *m.emission));
+      ++w.stats.mesh_lights;
+      w.features |= kFeatureMeshLights;
+    }
+    w.stats.triangles += tm.triangle_count();
+    ++w.stats.meshes;
+    g.shapes.push_back(Shape{ShapeKind::Mesh, uint32_t(g.meshes.size())});
+    g.meshes.push_back(std::move(tm));
+    w.shape_data.push_back(sd);
+    w.features |= kFeatureTriangles;
+  }
+  for (const SphereDesc& s : scene.spheres) {
+    check_material(scene, s.material, s.name);
+    ShapeData sd;
+    sd.material = s.material;
+    if (s.emission && !s.emission->is_black()) {
+      sd.light = int(w.lights.size());
+      w.lights.emplace_back(SphereLight(s.center, s.radius, s.to_world, *s.emission));
+      ++w.stats.sphere_lights;
+      w.features |= kFeatureSphereLights;
+      w.stats.cone_sampler_built = true;
+    }
+    g.shapes.push_back(Shape{ShapeKind::Sphere, uint32_t(g.spheres.size())});
+    g.spheres.push_back(SphereShape{s.center, s.radius, s.to_world});
+    w.shape_data.push_back(sd);
+    w.features |= kFeatureSpheres;
+  }
+  w.stats.spheres = g.spheres.size();
+  w.stats.sphere_geometry_built = !g.spheres.empty();
+  // Object-space smooth normals for instanced prototypes, shared by all instances of one prototype.
+  std::vector<int> prototype_normals(g.prototypes.size(), -2);
+  for (const InstanceDesc& inst : scene.instances) {
+    if (inst.base_mesh < 0 || size_t(inst.base_mesh) >= scene.meshes.size() || prototype_of[size_t(inst.base_mesh)] < 0)
+      throw Error(scene.source_path, inst.name, "references a mesh that is not an instance base");
+    const MeshDesc& base = scene.meshes[size_t(inst.base_mesh)];
+    const int proto = prototype_of[size_t(inst.base_mesh)];
+    ShapeData sd;
+    sd.material = inst.material >= 0 ? inst.material : base.material;
+    check_material(scene, sd.material, inst.name);
+    sd.smooth = inst.smooth.value_or(base.smooth || !base.normals.empty());
+    if (sd.smooth) {
+      int& pn = prototype_normals[size_t(proto)];
+      if (pn == -2) {
+        pn = int(w.normals.size());
+        w.normals.push_back(base.normals.empty() ? vertex_normals(g.prototypes[size_t(proto)]) : base.normals);
+      }
+      sd.normals = pn;
+      w.features |= kFeatureSmoothNormals;
+    }
+    g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size())});
+    g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
+    w.shape_data.push_back(sd);
+    w.stats.triangles += g.prototypes[size_t(proto)].triangle_count();
+    w.features |= kFeatureInstances;
+  }
+  w.stats.instances = g.instances.size();
+
+  const Bounds3f bounds = g.bounds();
+  w.scene_radius = bounds.empty() ? 1.0f : std::max(0.5f * bounds.extent(), 1e-6f);
+
+  for (const PointLightDesc& l : scene.point_lights) {
+    w.lights.emplace_back(PointLight(l.position, l.intensity));
+    ++w.stats.point_lights;
+  }
+  for (const SpotLightDesc& l : scene.spot_lights) {
+    w.lights.emplace_back(SpotLight(l.position, l.direction, l.intensity, l.coverage_deg, l.falloff_deg));
+    ++w.stats.spot_lights;
+  }
+  for (const DirectionalLightDesc& l : scene.directional_lights) {
+    w.lights.emplace_back(DirectionalLight(l.direction, l.radiance, w.scene_radius));
+    ++w.stats.directional_lights;
+  }
+  if (w.stats.point_lights + w.stats.spot_lights + w.stats.directional_lights > 0) w.features |= kFeaturePointLights;
+  for (const AreaLightDesc& l : scene.area_lights) {
+    w.lights.emplace_back(make_area_light(l));
+    ++w.stats.area_lights;
+    w.features |= kFeatureAreaLights;
+  }
+  if (!w.lights.empty()) {
+    w.light_selector = LightSelector(w.lights, options.light_selection);
+    w.stats.light_selector_built = true;
+  }
+  for (const CameraDesc& c : scene.cameras)
+    if (c.aperture_size > 0.0f) w.features |= kFeatureDepthOfField;
+  for (const std::string& u : scene.unsupported)
+    if (u.rfind("textures", 0) == 0) w.features |= kFeatureTextures;
+
+  if (options.build_accelerator) w.accel = make_accelerator(options.accel, g);
+  w.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return world;
+}
+
+}  // namespace kiln

@@ -1,0 +1,62 @@
+// The renderable world built from a SceneDesc: geometry for the accelerators, materials, lights and the per-shape
+// data shading needs. Only what the scene uses is built (no sphere data without spheres, no light selector without
+// lights) and WorldStats records what was.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lights/light.h"
+#include "lights/light_selector.h"
+#include "materials/material.h"
+#include "renderer/accel/accelerator.h"
+#include "renderer/features.h"
+#include "renderer/world_geometry.h"
+#include "scenes/scene.h"
+
+namespace kiln {
+
+struct ShapeData {
+  int material = -1;
+  int light = -1;            // index into World::lights when the shape emits
+  bool smooth = false;
+  int normals = -1;          // index into World::normals (per-vertex, same space as the mesh) or -1
+};
+
+struct WorldStats {
+  size_t meshes = 0, triangles = 0, spheres = 0, instances = 0;
+  size_t point_lights = 0, spot_lights = 0, directional_lights = 0, area_lights = 0, mesh_lights = 0,
+         sphere_lights = 0;
+  size_t materials = 0;
+  bool sphere_geometry_built = false;
+  bool cone_sampler_built = false;  // sphere/ellipsoid lights present
+  bool light_selector_built = false;
+  double build_seconds = 0;
+};
+
+struct World {
+  WorldGeometry geometry;
+  std::vector<ShapeData> shape_data;            // parallel to geometry.shapes
+  std::vector<std::vector<Vec3f>> normals;      // smooth per-vertex normals
+  std::vector<Material> materials;
+  std::vector<Light> lights;
+  LightSelector light_selector;
+  Rgb ambient{0};
+  Rgb background{0};
+  uint32_t features = 0;
+  float scene_radius = 1.0f;
+  WorldStats stats;
+  std::unique_ptr<Accelerator> accel;
+  std::vector<std::string> unsupported;
+};
+
+struct WorldOptions {
+  AccelKind accel = AccelKind::Embree;
+  LightSelection light_selection = LightSelection::PowerProportional;
+  bool build_accelerator = true;  // kiln info only needs the description and the feature mask
+};
+
+// Throws kiln::Error on inconsistent descriptions (dangling material indices etc.).
+std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& options);
+
+}  // namespace kiln

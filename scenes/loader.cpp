@@ -1,0 +1,42 @@
+#include "scenes/loader.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "scenes/json_loader.h"
+#include "scenes/mesh_scene.h"
+#include "scenes/obj_loader.h"
+#include "scenes/ply_loader.h"
+#include "scenes/subdivision.h"
+#include "scenes/xml_loader.h"
+
+namespace kiln {
+
+SceneDesc load_scene(const std::string& path, const LoadOptions& options) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(path, "", "file not found");
+  if (fs::is_directory(path, ec)) throw Error(path, "", "is a directory, not a scene file");
+  if (!std::ifstream(path).good()) throw Error(path, "", "cannot be opened for reading");
+  std::string ext = fs::path(path).extension().string();
+  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  SceneDesc scene;
+  if (ext == ".xml") {
+    scene = load_ceng795_xml(path);
+  } else if (ext == ".json") {
+    scene = load_cs171_json(path);
+  } else if (ext == ".ply") {
+    scene = make_mesh_scene(load_ply(path), path);
+  } else if (ext == ".obj") {
+    scene = make_mesh_scene(load_obj(path), path);
+  } else {
+    throw Error(path, "", "unknown scene format '" + ext + "' (expected .xml, .json, .ply or .obj)");
+  }
+  if (options.subdivide >= 0)
+    for (MeshDesc& m : scene.meshes) m.subdivide = options.subdivide;
+  apply_subdivision(scene);
+  return scene;
+}
+
+}  // namespace kiln

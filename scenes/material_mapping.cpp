@@ -1,0 +1,132 @@
+#include "scenes/material_mapping.h"
+
+#include <string>
+
+#include "core/error.h"
+
+namespace kiln {
+namespace {
+
+class Context {
+ public:
+  Context(const MaterialDesc& m, const SceneDesc& s) : m_(m), s_(s) {}
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error(s_.source_path, "Material id=" + std::to_string(m_.id), what);
+  }
+  void check_colour(Rgb c, const char* name) const {
+    if (!c.is_finite() || c.has_negative()) fail(std::string(name) + " must be finite and non-negative");
+  }
+  float refraction_index(const char* why) const {
+    if (!m_.has_refraction_index) fail(std::string(why) + " needs a RefractionIndex");
+    return positive_index(m_.refraction_index, "RefractionIndex");
+  }
+  float positive_index(float eta, const char* name) const {
+    if (!std::isfinite(eta) || !(eta > 0.0f)) fail(std::string(name) + " must be a positive number, got " + std::to_string(eta));
+    return eta;
+  }
+  float absorption_index() const {
+    if (!std::isfinite(m_.absorption_index) || m_.absorption_index < 0.0f)
+      fail("AbsorptionIndex must be a non-negative number, got " + std::to_string(m_.absorption_index));
+    return m_.absorption_index;
+  }
+
+ private:
+  const MaterialDesc& m_;
+  const SceneDesc& s_;
+};
+
+Rgb degamma(Rgb c) { return pow(c, kDegammaExponent); }
+
+PhongVariant variant_of(BrdfKind kind, bool normalized) {
+  if (kind == BrdfKind::OriginalPhong || kind == BrdfKind::OriginalBlinnPhong) return PhongVariant::Original;
+  return normalized ? PhongVariant::ModifiedNormalized : PhongVariant::Modified;
+}
+
+SurfaceBrdf build_surface(const MaterialDesc& m, const SceneDesc& scene, const Context& ctx, Rgb kd, Rgb ks) {
+  if (!m.brdf) {
+    if (!std::isfinite(m.phong_exponent) || m.phong_exponent < 0.0f)
+      ctx.fail("PhongExponent must be a non-negative number, got " + std::to_string(m.phong_exponent));
+    if (kd.is_black() && ks.is_black()) return NoSurface{};
+    return BlinnPhong{kd, ks, m.phong_exponent, PhongVariant::Original};
+  }
+  if (*m.brdf < 0 || size_t(*m.brdf) >= scene.brdfs.size())
+    ctx.fail("BRDF index " + std::to_string(*m.brdf) + " does not name one of the " +
+             std::to_string(scene.brdfs.size()) + " BRDFs");
+  const BrdfDesc& b = scene.brdfs[size_t(*m.brdf)];
+  if (!std::isfinite(b.exponent) || b.exponent < 0.0f)
+    ctx.fail("BRDF id=" + std::to_string(b.id) + " Exponent must be a non-negative number, got " +
+             std::to_string(b.exponent));
+  if (kd.is_black() && ks.is_black()) return NoSurface{};
+  switch (b.kind) {
+    case BrdfKind::OriginalPhong:
+    case BrdfKind::ModifiedPhong:
+      return Phong{kd, ks, b.exponent, variant_of(b.kind, b.normalized)};
+    case BrdfKind::OriginalBlinnPhong:
+    case BrdfKind::ModifiedBlinnPhong:
+      return BlinnPhong{kd, ks, b.exponent, variant_of(b.kind, b.normalized)};
+    case BrdfKind::TorranceSparrow: {
+      const float eta = b.refractive_index ? ctx.positive_index(*b.refractive_index, "TorranceSparrow RefractiveIndex")
+                                           : ctx.refraction_index("TorranceSparrow BRDF");
+      return TorranceSparrow{kd, ks, b.exponent, eta, ctx.absorption_index(), b.kd_fresnel};
+    }
+    case BrdfKind::Lambert:
+      return Lambert{kd};
+  }
+  return NoSurface{};
+}
+
+// Per-unit-length transmittance a -> Beer-Lambert coefficient -ln(a).
+Rgb absorption_from_transparency(Rgb a) {
+  Rgb c;
+  for (int i = 0; i < 3; ++i) c[i] = -std::log(std::clamp(a[i], kMinTransparency, 1.0f));
+  return c;
+}
+
+}  // namespace
+
+Material build_material(const MaterialDesc& m, const SceneDesc& scene) {
+  const Context ctx(m, scene);
+  ctx.check_colour(m.ambient, "AmbientReflectance");
+  ctx.check_colour(m.diffuse, "DiffuseReflectance");
+  ctx.check_colour(m.specular, "SpecularReflectance");
+  ctx.check_colour(m.mirror, "MirrorReflectance");
+  ctx.check_colour(m.transparency, "Transparency");
+  ctx.check_colour(m.absorption_coefficient, "AbsorptionCoefficient");
+  if (!std::isfinite(m.roughness) || m.roughness < 0.0f)
+    ctx.fail("Roughness must be a non-negative number, got " + std::to_string(m.roughness));
+
+  const bool dg = m.degamma;
+  const Rgb ka = dg ? degamma(m.ambient) : m.ambient;
+  const Rgb kd = dg ? degamma(m.diffuse) : m.diffuse;
+  const Rgb ks = dg ? degamma(m.specular) : m.specular;
+  const Rgb km = dg ? degamma(m.mirror) : m.mirror;
+
+  Material out;
+  out.ambient = ka;
+  out.surface = build_surface(m, scene, ctx, kd, ks);
+  out.roughness = m.roughness;
+  switch (m.type) {
+    case MaterialType::Mirror:
+      if (!km.is_black()) out.delta = Mirror{km};
+      break;
+    case MaterialType::Conductor:
+      if (!km.is_black())
+        out.delta = Conductor{km, ctx.refraction_index("a conductor"), ctx.absorption_index()};
+      break;
+    case MaterialType::Dielectric:
+      out.delta = Dielectric{ctx.refraction_index("a dielectric")};
+      out.absorption = m.absorption_coefficient;
+      break;
+    case MaterialType::Plain:
+      if (!m.transparency.is_black()) {
+        out.delta = Dielectric{ctx.refraction_index("a dielectric (non-zero Transparency)")};
+        out.absorption = absorption_from_transparency(m.transparency) + m.absorption_coefficient;
+      } else if (!km.is_black()) {
+        out.delta = Mirror{km};
+      }
+      break;
+  }
+  return out;
+}
+
+}  // namespace kiln

@@ -1,0 +1,45 @@
+// The one place where scene-file materials become Kiln materials (CENG795 XML spec §4-§5, CS171 JSON).
+//
+// Surface BRDF:
+//   * MaterialDesc.brdf -> SceneDesc::brdfs[i]:
+//       OriginalPhong / ModifiedPhong [normalized]           -> Phong (Original / Modified / ModifiedNormalized)
+//       OriginalBlinnPhong / ModifiedBlinnPhong [normalized] -> BlinnPhong (same variants)
+//       TorranceSparrow -> TorranceSparrow; eta from the 2019 BRDF child RefractiveIndex, else the material's
+//                          RefractionIndex (2021); kappa = AbsorptionIndex; kdfresnel as given
+//       Lambert         -> Lambert(kd)  (CS171 "diffuse": f = color / pi)
+//     The BRDF's Exponent is used; PhongExponent is ignored (spec §14.11).
+//   * No BRDF: the classic course shading k_d max(0, cos) + k_s cos^PhongExponent(alpha_h), i.e.
+//     BlinnPhong Original (f = kd + ks cos^p(alpha_h) / cos(theta_i)).
+//   * A surface whose kd and ks are both black is dropped (NoSurface).
+// Delta part:
+//   * type Mirror -> Mirror(k_m); Conductor -> Conductor(k_m, RefractionIndex, AbsorptionIndex);
+//     Dielectric -> Dielectric(RefractionIndex), absorption = AbsorptionCoefficient (2021).
+//   * type Plain (2019 inference): non-zero Transparency -> Dielectric(RefractionIndex) with per-unit-length
+//     transmittance a = Transparency, i.e. absorption = -ln(a) (+ AbsorptionCoefficient); a is clamped to
+//     [kMinTransparency, 1]. Otherwise non-zero MirrorReflectance -> Mirror. A dielectric already reflects, so
+//     Transparency wins over MirrorReflectance.
+//   * roughness = Roughness (perturbs delta directions; 0 = perfect).
+// degamma="true": AmbientReflectance, DiffuseReflectance, SpecularReflectance and MirrorReflectance are
+//   gamma-decoded with c^2.2 (spec §14.3: the common reading); Transparency / absorption are not colours.
+//
+// CS171 loaders should fill MaterialDesc as: "diffuse" -> a BrdfDesc of kind Lambert referenced by brdf, with
+// diffuse = color; "specular" -> type Mirror, mirror = color; "translucent" -> type Dielectric with
+// refraction_index = 1.5 and has_refraction_index = true (no IOR key exists; 1.5 is glass).
+//
+// Bad input (dangling BRDF index, negative exponent, missing or non-positive refraction index where one is
+// needed, negative or non-finite colours) throws kiln::Error naming the scene file and "Material id=N".
+#pragma once
+#include "materials/material.h"
+#include "scenes/scene.h"
+
+namespace kiln {
+
+// Transparency values below this are treated as this (absorption -ln(1e-6) ~ 13.8 per unit length), keeping the
+// absorption coefficient finite so that transmittance(0) is 1 and never NaN.
+inline constexpr float kMinTransparency = 1e-6f;
+// Exponent applied by degamma="true".
+inline constexpr float kDegammaExponent = 2.2f;
+
+Material build_material(const MaterialDesc& desc, const SceneDesc& scene);
+
+}  // namespace kiln

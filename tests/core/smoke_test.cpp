@@ -1,3 +1,0 @@
-#include <gtest/gtest.h>
-#include "core/transform.h"
-TEST(Smoke, Identity) { EXPECT_TRUE(kiln::Transform().is_identity()); }

@@ -1,0 +1,69 @@
+// Helpers shared by the material tests: directions at a given incidence, BRDF factories, sample wrappers.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "core/rng.h"
+#include "materials/material.h"
+
+namespace kiln::test {
+
+// Unit direction with the given cos(theta) and azimuth phi (radians).
+inline Vec3f direction_at(double cos_theta, double phi = 0.3) {
+  const double s = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  return {float(s * std::cos(phi)), float(s * std::sin(phi)), float(cos_theta)};
+}
+
+inline std::string variant_name(PhongVariant v) {
+  switch (v) {
+    case PhongVariant::Original: return "Original";
+    case PhongVariant::Modified: return "Modified";
+    case PhongVariant::ModifiedNormalized: return "Normalized";
+  }
+  return "?";
+}
+
+// Wraps a surface BRDF as a Material so every test goes through one interface.
+template <class Brdf>
+Material surface_material(const Brdf& b) {
+  Material m;
+  m.surface = b;
+  return m;
+}
+
+}  // namespace kiln::test
+
+namespace kiln::test {
+
+struct AlbedoEstimate {
+  double mean = 0, stderr_ = 0;
+};
+
+// Directional albedo ∫ f cos dω_i by importance sampling with the material's own sampler (unbiased wherever the
+// sampler's pdf covers the support of f, which holds for every surface BRDF here). Failed samples count 0.
+inline AlbedoEstimate estimate_albedo(const Material& m, Vec3f wo, int n, uint64_t seed) {
+  Rng rng(seed, 77);
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    const float uc = rng.next_float();
+    const Vec2f u = rng.next_2d();
+    double v = 0;
+    if (const auto s = m.sample(wo, uc, u); s && !s->is_specular())
+      v = double(s->f.average()) * std::abs(double(s->wi.z)) / double(s->pdf);
+    sum += v;
+    sum2 += v * v;
+  }
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
+}
+
+// Simpson's rule on [a, b] with n (even) intervals, double precision.
+template <class F>
+double simpson(F&& f, double a, double b, int n = 20000) {
+  const double h = (b - a) / n;
+  double s = f(a) + f(b);
+  for (int i = 1; i < n; ++i) s += f(a + i * h) * (i % 2 ? 4.0 : 2.0);
+  return s * h / 3.0;
+}
+
+}  // namespace kiln::test
