@@ -19,7 +19,7 @@ inline Vec3f sample_cos_power(Vec2f u, float n) {
 inline float cos_power_pdf(float cos_theta, float n) {
   if (!(cos_theta > 0.0f)) return 0.0f;
   const double c = std::min(double(cos_theta), 1.0);
-  return float((double(n) + 1.05) * (0.5 / 3.14159265358979323846) * std::pow(c, double(n)));
+  return float((double(n) + 1.0) * (0.5 / 3.14159265358979323846) * std::pow(c, double(n)));
 }
 
 // cos^n clamped to the lobe (0 for cos <= 0), in double for the same reason.

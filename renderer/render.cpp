@@ -1,6 +1,7 @@
 #include "renderer/render.h"
 
 #include <tbb/parallel_for.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -29,7 +30,8 @@ Vec2f pixel_offset(uint64_t sample, uint32_t spp_total, Rng& rng) {
 
 class Progress {
  public:
-  Progress(bool enabled, size_t total) : enabled_(enabled), total_(total), start_(clock::now()) {}
+  // Only drawn on a terminal: a redirected stderr (CI logs) gets the final summary line alone.
+  Progress(bool enabled, size_t total) : enabled_(enabled && ::isatty(2)), total_(total), start_(clock::now()) {}
   void tile_done() {
     if (!enabled_) return;
     const size_t done = ++done_;

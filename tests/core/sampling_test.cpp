@@ -299,7 +299,9 @@ TEST(PowerHeuristic, Sanity) {
     EXPECT_NEAR(wf + wg, 1.0f, 1e-6f) << f << " " << g;
     EXPECT_GE(wf, 0.0f);
     EXPECT_LE(wf, 1.0f);
-    if (f > 1.001f * g) EXPECT_GT(wf, 0.5f) << f << " " << g;
+    if (f > 1.001f * g) {
+      EXPECT_GT(wf, 0.5f) << f << " " << g;
+    }
     // Only the ratio of the pdfs matters.
     EXPECT_NEAR(power_heuristic(f, g), power_heuristic(f * 1e-3f, g * 1e-3f), 1e-5f) << f << " " << g;
   }

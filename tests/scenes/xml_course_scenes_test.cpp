@@ -66,9 +66,10 @@ TEST(XmlCourseScenes, EveryFileLoads) {
         EXPECT_LT(*mat.brdf, int(s.brdfs.size()));
       }
     }
-    // The course files contain no unknown elements; anything reported is a loader gap.
+    // The course files contain no unknown elements; the only oddities are a 5-number NearPlane and a repeated
+    // Sphere id (both hw1_2021). Anything else reported is a loader gap.
     for (const auto& w : s.warnings) {
-      if (w.find("NearPlane has 5 numbers") == std::string::npos) {
+      if (w.find("NearPlane has 5 numbers") == std::string::npos && w.find("duplicate Sphere id") == std::string::npos) {
         ADD_FAILURE() << "unexpected warning: " << w;
       }
     }

@@ -1,0 +1,99 @@
+// Helpers for renderer tests: scenes built in code and direct access to the integrators.
+#pragma once
+#include <tbb/global_control.h>
+
+#include <filesystem>
+#include <string>
+
+#include "core/rng.h"
+#include "renderer/camera.h"
+#include "renderer/film.h"
+#include "renderer/integrator.h"
+#include "renderer/render.h"
+#include "renderer/world.h"
+#include "scenes/loader.h"
+
+namespace kiln::test {
+
+inline std::string shared_dir() { return KILN_SHARED_DIR; }
+inline bool have_shared() { return std::filesystem::exists(shared_dir() + "/scenes/ceng795"); }
+inline std::string tmp_dir(const std::string& sub) {
+  const std::string d = std::string(KILN_TEST_TMP) + "/" + sub;
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+// A closed cube [-1,1]^3 whose faces are one LightMesh emitting Le inward, with a Lambertian interior of albedo a.
+// Seen from inside, every strategy must give Le * sum_{k=0..D} a^k (D bounces), i.e. Le / (1 - a) unbounded.
+inline SceneDesc furnace_box(float albedo, Rgb le) {
+  SceneDesc s;
+  s.format = "test";
+  BrdfDesc lambert;
+  lambert.kind = BrdfKind::Lambert;
+  s.brdfs.push_back(lambert);
+  MaterialDesc m;
+  m.brdf = 0;
+  m.diffuse = Rgb(albedo);
+  s.materials.push_back(m);
+  MeshDesc box;
+  box.name = "furnace";
+  box.positions = {{-1, -1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, 1, 1}, {1, 1, 1}, {1, 1, -1}};
+  // Winding chosen so that (v1-v0)x(v2-v0) points into the box on every face.
+  const uint32_t one_based[] = {1, 2, 3, 1, 3, 4, 5, 7, 6, 5, 8, 7, 1, 4, 8, 1, 8, 5,
+                                1, 5, 6, 1, 6, 2, 4, 3, 7, 4, 7, 8, 2, 6, 7, 2, 7, 3};
+  for (uint32_t i : one_based) box.indices.push_back(i - 1);
+  box.material = 0;
+  box.emission = le;
+  s.meshes.push_back(box);
+  CameraDesc cam;
+  cam.id = "1";
+  cam.position = {0.1f, -0.2f, 0.3f};
+  cam.gaze = {0, 0, -1};
+  cam.up = {0, 1, 0};
+  cam.use_fov = true;
+  cam.fov_y_deg = 90;
+  cam.width = cam.height = 8;
+  s.cameras.push_back(cam);
+  return s;
+}
+
+struct Estimate {
+  double mean = 0, stderr_ = 0;
+};
+
+// Mean luminance-free (red channel) estimate over n independent camera samples through random pixels.
+inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const CameraDesc& cd, uint32_t n,
+                              uint64_t seed = 7) {
+  const Camera cam(cd);
+  RayCounters c;
+  double sum = 0, sum2 = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    Rng rng = pixel_sample_rng(seed, i % 64, i / 64, i);
+    const Vec2f px = rng.next_2d();
+    const Ray ray = cam.generate_ray(px.x * float(cam.width()), px.y * float(cam.height()), rng.next_2d());
+    const double v = trace(w, s, ray, rng, c).r;
+    sum += v;
+    sum2 += v * v;
+  }
+  Estimate e;
+  e.mean = sum / n;
+  e.stderr_ = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / (n - 1.0));
+  return e;
+}
+
+// Renders camera 0 of a scene in full (optionally cropped/resized by the caller through the SceneDesc).
+inline Image render_image(const World& w, const CameraDesc& cd, const IntegratorSettings& s, uint32_t spp,
+                          uint64_t seed = 0, int threads = 0, bool reverse = false) {
+  std::unique_ptr<tbb::global_control> gc;
+  if (threads > 0) gc = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  const Camera cam(cd);
+  Film film(cam.width(), cam.height());
+  RenderOptions ro;
+  ro.seed = seed;
+  ro.spp_total = spp;
+  ro.reverse_tile_order = reverse;
+  render_samples(w, cam, s, ro, 0, spp, film);
+  return film.mean();
+}
+
+}  // namespace kiln::test
