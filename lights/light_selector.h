@@ -1,6 +1,7 @@
 // Chooses which light a next-event-estimation sample goes to, and reports the probability of that choice so
 // integrators can weight by MIS. PowerProportional weights each light by power(light); Uniform gives every light
-// the same weight. In both modes a light with zero power is never chosen, and with no such light empty() is true.
+// the same weight. In both modes a light with zero power is never chosen; when no light has positive power,
+// empty() is true.
 #pragma once
 #include <span>
 

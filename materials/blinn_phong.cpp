@@ -49,15 +49,15 @@ uint32_t BlinnPhong::flags() const {
   return f;
 }
 
-float BlinnPhong::diffuse_albedo_at_normal() const {
-  return variant == PhongVariant::ModifiedNormalized ? 1.0f : kPi;
-}
+float BlinnPhong::diffuse_albedo_at_normal() const { return variant == PhongVariant::ModifiedNormalized ? 1.0f : kPi; }
 
 float BlinnPhong::glossy_albedo_at_normal() const {
   const double p = exponent;
   switch (variant) {
-    case PhongVariant::Original: return float(normal_incidence_integral(p, false));
-    case PhongVariant::Modified: return float(normal_incidence_integral(p, true));
+    case PhongVariant::Original:
+      return float(normal_incidence_integral(p, false));
+    case PhongVariant::Modified:
+      return float(normal_incidence_integral(p, true));
     case PhongVariant::ModifiedNormalized:
       return float((p + 8.0) / (8.0 * 3.14159265358979323846) * normal_incidence_integral(p, true));
   }
@@ -76,8 +76,10 @@ Rgb BlinnPhong::eval(Vec3f wo, Vec3f wi) const {
   if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return Rgb(0.0f);
   const float lobe = cos_power(half_vector(wo, wi).z, exponent);
   switch (variant) {
-    case PhongVariant::Original: return kd + ks * (lobe / cos_denominator(wi.z));
-    case PhongVariant::Modified: return kd + ks * lobe;
+    case PhongVariant::Original:
+      return kd + ks * (lobe / cos_denominator(wi.z));
+    case PhongVariant::Modified:
+      return kd + ks * lobe;
     case PhongVariant::ModifiedNormalized:
       return kd * kInvPi + ks * ((exponent + 8.0f) * (kInvPi / 8.0f) * lobe);
   }

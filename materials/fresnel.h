@@ -25,8 +25,8 @@ float fresnel_schlick(float cos_theta, float r0);
 inline Vec3f reflect_z(Vec3f w) { return {-w.x, -w.y, w.z}; }
 
 struct Refraction {
-  Vec3f wt;     // refracted direction, on the other side of the surface from wo
-  float etap;   // eta of the side wt enters over eta of the side wo leaves (eta or 1/eta)
+  Vec3f wt;    // refracted direction, on the other side of the surface from wo
+  float etap;  // eta of the side wt enters over eta of the side wo leaves (eta or 1/eta)
 };
 
 // Refracts wo through the interface with relative index eta = eta_inside / eta_outside. Empty under total

@@ -21,8 +21,10 @@ float clamp_unit(float u) { return std::clamp(u, 0.0f, kOneMinusEpsilon); }
 float surface_albedo_estimate(const SurfaceBrdf& s) {
   return std::visit(
       [](const auto& b) -> float {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return 0.0f;
-        else return b.albedo_estimate();
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
+          return 0.0f;
+        else
+          return b.albedo_estimate();
       },
       s);
 }
@@ -30,8 +32,10 @@ float surface_albedo_estimate(const SurfaceBrdf& s) {
 float delta_albedo_estimate(const DeltaBsdf& d, Vec3f wo) {
   return std::visit(
       [wo](const auto& b) -> float {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>) return 0.0f;
-        else return b.albedo_estimate(wo);
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>)
+          return 0.0f;
+        else
+          return b.albedo_estimate(wo);
       },
       d);
 }
@@ -39,8 +43,10 @@ float delta_albedo_estimate(const DeltaBsdf& d, Vec3f wo) {
 int delta_branches_of(const DeltaBsdf& d, Vec3f wo, SpecularBranch out[2]) {
   return std::visit(
       [&](const auto& b) -> int {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>) return 0;
-        else return b.branches(wo, out);
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>)
+          return 0;
+        else
+          return b.branches(wo, out);
       },
       d);
 }
@@ -53,8 +59,10 @@ Rgb surface_eval(const SurfaceBrdf& s, Vec3f wo, Vec3f wi) {
   }
   return std::visit(
       [&](const auto& b) -> Rgb {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return Rgb(0.0f);
-        else return b.eval(wo, wi);
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
+          return Rgb(0.0f);
+        else
+          return b.eval(wo, wi);
       },
       s);
 }
@@ -66,8 +74,10 @@ float surface_pdf(const SurfaceBrdf& s, Vec3f wo, Vec3f wi) {
   }
   return std::visit(
       [&](const auto& b) -> float {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return 0.0f;
-        else return b.pdf(wo, wi);
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
+          return 0.0f;
+        else
+          return b.pdf(wo, wi);
       },
       s);
 }
@@ -77,8 +87,10 @@ std::optional<BsdfSample> surface_sample(const SurfaceBrdf& s, Vec3f wo, float u
   if (flip) wo = flip_z(wo);
   std::optional<BsdfSample> bs = std::visit(
       [&](const auto& b) -> std::optional<BsdfSample> {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return std::nullopt;
-        else return b.sample(wo, uc, u);
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
+          return std::nullopt;
+        else
+          return b.sample(wo, uc, u);
       },
       s);
   if (bs && flip) bs->wi = flip_z(bs->wi);
@@ -88,8 +100,10 @@ std::optional<BsdfSample> surface_sample(const SurfaceBrdf& s, Vec3f wo, float u
 uint32_t surface_flags(const SurfaceBrdf& s) {
   return std::visit(
       [](const auto& b) -> uint32_t {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>) return kLobeNone;
-        else return b.flags();
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
+          return kLobeNone;
+        else
+          return b.flags();
       },
       s);
 }
@@ -97,8 +111,10 @@ uint32_t surface_flags(const SurfaceBrdf& s) {
 uint32_t delta_flags(const DeltaBsdf& d) {
   return std::visit(
       [](const auto& b) -> uint32_t {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>) return kLobeNone;
-        else return b.flags();
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoDelta>)
+          return kLobeNone;
+        else
+          return b.flags();
       },
       d);
 }

@@ -15,17 +15,18 @@ uint32_t Phong::flags() const {
   return f;
 }
 
-float Phong::diffuse_albedo_at_normal() const {
-  return variant == PhongVariant::ModifiedNormalized ? 1.0f : kPi;
-}
+float Phong::diffuse_albedo_at_normal() const { return variant == PhongVariant::ModifiedNormalized ? 1.0f : kPi; }
 
 // At normal incidence the lobe around the normal lies wholly above the horizon:
 // integral of cos^p over the hemisphere = 2 pi/(p+1); with the extra cos(theta_i) = 2 pi/(p+2).
 float Phong::glossy_albedo_at_normal() const {
   switch (variant) {
-    case PhongVariant::Original: return 2.0f * kPi / (exponent + 1.0f);
-    case PhongVariant::Modified: return 2.0f * kPi / (exponent + 2.0f);
-    case PhongVariant::ModifiedNormalized: return 1.0f;
+    case PhongVariant::Original:
+      return 2.0f * kPi / (exponent + 1.0f);
+    case PhongVariant::Modified:
+      return 2.0f * kPi / (exponent + 2.0f);
+    case PhongVariant::ModifiedNormalized:
+      return 1.0f;
   }
   return 1.0f;
 }
@@ -42,8 +43,10 @@ Rgb Phong::eval(Vec3f wo, Vec3f wi) const {
   if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return Rgb(0.0f);
   const float lobe = cos_power(dot(reflect_z(wo), wi), exponent);
   switch (variant) {
-    case PhongVariant::Original: return kd + ks * (lobe / cos_denominator(wi.z));
-    case PhongVariant::Modified: return kd + ks * lobe;
+    case PhongVariant::Original:
+      return kd + ks * (lobe / cos_denominator(wi.z));
+    case PhongVariant::Modified:
+      return kd + ks * lobe;
     case PhongVariant::ModifiedNormalized:
       return kd * kInvPi + ks * ((exponent + 2.0f) * kInv2Pi * lobe);
   }

@@ -11,7 +11,7 @@ struct SpecularBranch {
   Rgb weight;                // multiplies the radiance arriving along wi (no cosine, no pdf)
   float probability = 1.0f;  // chance that sample() picks this branch (branch probabilities sum to 1)
   bool transmission = false;
-  float etap = 1.0f;         // relative IOR crossed (transmission only)
+  float etap = 1.0f;  // relative IOR crossed (transmission only)
 };
 
 }  // namespace kiln

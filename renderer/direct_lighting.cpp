@@ -46,10 +46,9 @@ Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray,
     DeltaBranch branches[2];
     const int n = m.delta_branches(frame.to_local(wo), branches);
     for (int i = 0; i < n; ++i) {
-      Vec3f wi_l = branches[i].wi;
-      if (!perturb_direction(wi_l, m.roughness, rng.next_2d())) continue;
-      if (branches[i].weight.is_black()) continue;
-      const Vec3f wi = frame.to_world(wi_l);
+      const auto wi_l = perturb(branches[i].wi, m.roughness, rng.next_2d());
+      if (!wi_l || branches[i].weight.is_black()) continue;
+      const Vec3f wi = frame.to_world(*wi_l);
       L += branches[i].weight * trace_recursive(w, s, spawn_ray(si.p, si.ng, wi), depth + 1, rng, c);
     }
   }

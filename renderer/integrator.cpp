@@ -22,6 +22,7 @@ IntegratorSettings settings_for_camera(const CameraDesc& camera, const SceneDesc
     s.russian_roulette = camera.pt.russian_roulette;
     s.course_roulette = camera.pt.russian_roulette;
     s.rr_min_depth = 0;
+    s.nee_at_last_vertex = true;
     s.max_depth = camera.pt.russian_roulette ? -1 : scene.max_recursion_depth.value_or(kDefaultMaxDepth);
     return s;
   }

@@ -20,7 +20,7 @@ struct IntegratorSettings {
   bool course_roulette = false;   // course semantics: roulette replaces the depth cap (spec §11)
   int max_depth = 8;              // bounces after the camera ray; < 0: unlimited (only with roulette)
   int rr_min_depth = 3;           // Kiln's roulette starts after this many bounces
-  bool point_lights_without_nee = false;  // course references: point lights only through NEE (see README)
+  bool nee_at_last_vertex = false;  // course rule: the vertex at max_depth still samples lights (README)
   float clamp = 0.0f;             // firefly clamp on per-sample radiance; 0 = off (default)
   uint32_t features = kFeatureAll;  // the scene's feature mask; code paths for absent features are skipped
   std::string describe() const;

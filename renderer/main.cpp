@@ -40,6 +40,13 @@ int main(int argc, char** argv) {
   info->add_option("scene", info_scene, "Scene file")->required();
   info->add_option("--subdivide", info_subdivide, "Loop-subdivide every mesh this many times");
 
+  std::string cmp_image, cmp_ref;
+  int cmp_block = 32;
+  auto* compare = app.add_subcommand("compare", "Compare an EXR with a reference EXR (block luminance, MSE, relMSE)");
+  compare->add_option("image", cmp_image, "Rendered EXR")->required();
+  compare->add_option("reference", cmp_ref, "Reference EXR")->required();
+  compare->add_option("--block", cmp_block, "Block size in pixels for the block statistics")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -49,5 +56,6 @@ int main(int argc, char** argv) {
   ra.accel = accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*render) return run_guarded([&] { return cmd_render(ra); });
   if (*info) return run_guarded([&] { return cmd_info(info_scene, info_subdivide); });
+  if (*compare) return run_guarded([&] { return cmd_compare(cmp_image, cmp_ref, cmp_block); });
   return kExitBadInput;
 }

@@ -86,7 +86,11 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
         }
       }
     }
-    if (!si.material || depth >= max_depth) break;
+    if (!si.material) break;
+    // Kiln: max_depth bounces, so the last vertex only collects emission. The course's recursion also runs
+    // NEE there (one more bounce of light for NEE paths than for pure path tracing; README).
+    const bool last_vertex = depth >= max_depth;
+    if (last_vertex && !(s.nee_at_last_vertex && use_nee)) break;
     const Material& m = *si.material;
     if (exits_dielectric(si, ray.d)) beta *= m.transmittance(hit.t * length(ray.d));
     orient_normals(si, wo);
@@ -111,6 +115,7 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
       }
     }
 
+    if (last_vertex) break;
     const auto ds = sample_direction(s, m, wo_l, rng);
     if (!ds) break;
     const Vec3f wi = frame.to_world(ds->wi_local);

@@ -30,19 +30,4 @@ inline bool valid_reflection_side(const SurfaceInteraction& si, Vec3f wo, Vec3f 
   return dot(wo, si.ng) * dot(wi, si.ng) > 0.0f;
 }
 
-// Course glossy reflection (spec §5 Roughness): perturb a delta direction inside the square of side `roughness`
-// around it; directions that fall below the surface are dropped.
-inline bool perturb_direction(Vec3f& wi_local, float roughness, Vec2f u) {
-  if (roughness <= 0.0f) return true;
-  Vec3f a, b;
-  coordinate_system(wi_local, a, b);
-  const Vec3f r = wi_local + (a * (u.x - 0.5f) + b * (u.y - 0.5f)) * roughness;
-  const float len = length(r);
-  if (!(len > 0.0f)) return false;
-  const Vec3f p = r / len;
-  if (p.z * wi_local.z <= 0.0f) return false;
-  wi_local = p;
-  return true;
-}
-
 }  // namespace kiln

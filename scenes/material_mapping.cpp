@@ -21,7 +21,8 @@ class Context {
     return positive_index(m_.refraction_index, "RefractionIndex");
   }
   float positive_index(float eta, const char* name) const {
-    if (!std::isfinite(eta) || !(eta > 0.0f)) fail(std::string(name) + " must be a positive number, got " + std::to_string(eta));
+    if (!std::isfinite(eta) || !(eta > 0.0f))
+      fail(std::string(name) + " must be a positive number, got " + std::to_string(eta));
     return eta;
   }
   float absorption_index() const {
@@ -110,8 +111,7 @@ Material build_material(const MaterialDesc& m, const SceneDesc& scene) {
       if (!km.is_black()) out.delta = Mirror{km};
       break;
     case MaterialType::Conductor:
-      if (!km.is_black())
-        out.delta = Conductor{km, ctx.refraction_index("a conductor"), ctx.absorption_index()};
+      if (!km.is_black()) out.delta = Conductor{km, ctx.refraction_index("a conductor"), ctx.absorption_index()};
       break;
     case MaterialType::Dielectric:
       out.delta = Dielectric{ctx.refraction_index("a dielectric")};

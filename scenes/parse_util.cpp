@@ -65,9 +65,15 @@ float float_or_fail(std::string_view token, const TextSource& src, const Tokens&
 
 int64_t int_or_fail(std::string_view token, const TextSource& src, const Tokens& tok) {
   if (auto v = to_int64(token)) return *v;
-  // A finite non-integer ("1.5") gets the integer message; garbage, overflow or nan get the precise one.
-  const std::string problem = to_double(token) ? std::string() : number_problem(token);
-  src.fail(problem.empty() ? "expected an integer, got " + quote(token) : problem, token_line(src, tok));
+  // Overflow (of int64 or of any number) gets its own message; everything else is "not an integer".
+  std::string_view t = token;
+  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  int64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  const bool overflow = (ec == std::errc::result_out_of_range && ptr == t.data() + t.size()) ||
+                        number_problem(token).find("out of range") != std::string::npos;
+  src.fail(overflow ? quote(token) + " is out of range" : "expected an integer, got " + quote(token),
+           token_line(src, tok));
 }
 
 }  // namespace

@@ -18,8 +18,8 @@ namespace kiln {
 // Where a piece of text came from, so that parse errors can name it.
 struct TextSource {
   std::string file;
-  int line = 0;          // 1-based line of the first character of the text; 0 when unknown
-  std::string element;   // element path or key, e.g. "Mesh id=3 / Faces"; may be empty
+  int line = 0;         // 1-based line of the first character of the text; 0 when unknown
+  std::string element;  // element path or key, e.g. "Mesh id=3 / Faces"; may be empty
 
   // Location string for Error: "line 12 (Mesh id=3 / Faces)", "line 12", "Mesh id=3" or "".
   std::string location(int line_override = 0) const;

@@ -19,12 +19,15 @@ constexpr size_t type_size(PlyType t) { return kPlyTypeSize[static_cast<int>(t)]
 constexpr bool is_integer(PlyType t) { return t != PlyType::F32 && t != PlyType::F64; }
 
 std::optional<PlyType> parse_type(std::string_view s) {
-  struct Name { std::string_view name; PlyType type; };
+  struct Name {
+    std::string_view name;
+    PlyType type;
+  };
   static constexpr Name kNames[] = {
-      {"char", PlyType::I8},    {"int8", PlyType::I8},     {"uchar", PlyType::U8},   {"uint8", PlyType::U8},
-      {"short", PlyType::I16},  {"int16", PlyType::I16},   {"ushort", PlyType::U16}, {"uint16", PlyType::U16},
-      {"int", PlyType::I32},    {"int32", PlyType::I32},   {"uint", PlyType::U32},   {"uint32", PlyType::U32},
-      {"float", PlyType::F32},  {"float32", PlyType::F32}, {"double", PlyType::F64}, {"float64", PlyType::F64}};
+      {"char", PlyType::I8},   {"int8", PlyType::I8},     {"uchar", PlyType::U8},   {"uint8", PlyType::U8},
+      {"short", PlyType::I16}, {"int16", PlyType::I16},   {"ushort", PlyType::U16}, {"uint16", PlyType::U16},
+      {"int", PlyType::I32},   {"int32", PlyType::I32},   {"uint", PlyType::U32},   {"uint32", PlyType::U32},
+      {"float", PlyType::F32}, {"float32", PlyType::F32}, {"double", PlyType::F64}, {"float64", PlyType::F64}};
   for (const auto& n : kNames)
     if (n.name == s) return n.type;
   return std::nullopt;
@@ -107,10 +110,14 @@ PlyHeader parse_header(std::string_view data, const Ctx& ctx) {
     if (key == "end_header") break;
     if (key == "format") {
       if (tok.size() != 3) ctx.fail(where, "malformed format line");
-      if (tok[1] == "ascii") h.format = PlyFormat::Ascii;
-      else if (tok[1] == "binary_little_endian") h.format = PlyFormat::BinaryLittleEndian;
-      else if (tok[1] == "binary_big_endian") h.format = PlyFormat::BinaryBigEndian;
-      else ctx.fail(where, "unknown format '" + std::string(tok[1]) + "'");
+      if (tok[1] == "ascii")
+        h.format = PlyFormat::Ascii;
+      else if (tok[1] == "binary_little_endian")
+        h.format = PlyFormat::BinaryLittleEndian;
+      else if (tok[1] == "binary_big_endian")
+        h.format = PlyFormat::BinaryBigEndian;
+      else
+        ctx.fail(where, "unknown format '" + std::string(tok[1]) + "'");
       if (tok[2] != "1.0" && tok[2] != "1") ctx.fail(where, "unsupported PLY version '" + std::string(tok[2]) + "'");
       have_format = true;
     } else if (key == "element") {
@@ -154,8 +161,7 @@ VertexLayout vertex_layout(const PlyElement& e, const Ctx& ctx) {
     if (l.pos[k] < 0) ctx.fail(where, std::string("missing property '") + pos_names[k] + "'");
   }
   const int n[3] = {e.find("nx"), e.find("ny"), e.find("nz")};
-  if ((n[0] >= 0) != (n[1] >= 0) || (n[0] >= 0) != (n[2] >= 0))
-    ctx.fail(where, "normals need all of nx, ny, nz");
+  if ((n[0] >= 0) != (n[1] >= 0) || (n[0] >= 0) != (n[2] >= 0)) ctx.fail(where, "normals need all of nx, ny, nz");
   if (n[0] >= 0) std::copy(n, n + 3, l.normal);
   static constexpr std::string_view kUvNames[][2] = {
       {"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
@@ -198,7 +204,7 @@ struct FaceSink {
   }
   [[noreturn]] void bad_index(uint64_t face, int64_t index) const {
     ctx.fail(where(face), "vertex index " + std::to_string(index) + " is out of range (" +
-                                            std::to_string(vertex_count) + " vertices)");
+                              std::to_string(vertex_count) + " vertices)");
   }
   void check_size(uint64_t face, int64_t n) const {
     if (n < 3) ctx.fail(where(face), "face has " + std::to_string(n) + " vertices (need at least 3)");
@@ -241,9 +247,12 @@ T byte_swapped(T v) {
     using U = std::conditional_t<sizeof(T) == 2, uint16_t, std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>>;
     U u;
     std::memcpy(&u, &v, sizeof(T));
-    if constexpr (sizeof(T) == 2) u = __builtin_bswap16(u);
-    else if constexpr (sizeof(T) == 4) u = __builtin_bswap32(u);
-    else u = __builtin_bswap64(u);
+    if constexpr (sizeof(T) == 2)
+      u = __builtin_bswap16(u);
+    else if constexpr (sizeof(T) == 4)
+      u = __builtin_bswap32(u);
+    else
+      u = __builtin_bswap64(u);
     std::memcpy(&v, &u, sizeof(T));
     return v;
   }
@@ -252,22 +261,32 @@ T byte_swapped(T v) {
 template <typename T, bool Swap>
 T load(const uint8_t* p) {
   const T v = load_raw<T>(p);
-  if constexpr (Swap) return byte_swapped(v);
-  else return v;
+  if constexpr (Swap)
+    return byte_swapped(v);
+  else
+    return v;
 }
 
 // Calls f.template operator()<T>() with T the C++ type of t.
 template <typename F>
 decltype(auto) with_type(PlyType t, F&& f) {
   switch (t) {
-    case PlyType::I8: return f.template operator()<int8_t>();
-    case PlyType::U8: return f.template operator()<uint8_t>();
-    case PlyType::I16: return f.template operator()<int16_t>();
-    case PlyType::U16: return f.template operator()<uint16_t>();
-    case PlyType::I32: return f.template operator()<int32_t>();
-    case PlyType::U32: return f.template operator()<uint32_t>();
-    case PlyType::F32: return f.template operator()<float>();
-    case PlyType::F64: break;
+    case PlyType::I8:
+      return f.template operator()<int8_t>();
+    case PlyType::U8:
+      return f.template operator()<uint8_t>();
+    case PlyType::I16:
+      return f.template operator()<int16_t>();
+    case PlyType::U16:
+      return f.template operator()<uint16_t>();
+    case PlyType::I32:
+      return f.template operator()<int32_t>();
+    case PlyType::U32:
+      return f.template operator()<uint32_t>();
+    case PlyType::F32:
+      return f.template operator()<float>();
+    case PlyType::F64:
+      break;
   }
   return f.template operator()<double>();
 }
@@ -278,8 +297,10 @@ double read_number(const uint8_t* p, PlyType t, bool swap) {
 }
 int64_t read_integer(const uint8_t* p, PlyType t, bool swap) {
   return with_type(t, [&]<typename T>() -> int64_t {
-    if constexpr (std::is_integral_v<T>) return int64_t(swap ? load<T, true>(p) : load<T, false>(p));
-    else return 0;  // unreachable: list count and index types are checked to be integers in the header
+    if constexpr (std::is_integral_v<T>)
+      return int64_t(swap ? load<T, true>(p) : load<T, false>(p));
+    else
+      return 0;  // unreachable: list count and index types are checked to be integers in the header
   });
 }
 
@@ -312,11 +333,10 @@ void decode_vertices_fixed(const uint8_t* base, const PlyElement& e, const Verte
   const auto off = fixed_offsets(e, stride);
   const size_t n = size_t(e.count);
   m.positions.resize(n);
-  const bool packed_xyz = !swap && e.props[size_t(l.pos[0])].type == PlyType::F32 &&
-                          e.props[size_t(l.pos[1])].type == PlyType::F32 &&
-                          e.props[size_t(l.pos[2])].type == PlyType::F32 &&
-                          off[size_t(l.pos[1])] == off[size_t(l.pos[0])] + 4 &&
-                          off[size_t(l.pos[2])] == off[size_t(l.pos[0])] + 8;
+  const bool packed_xyz =
+      !swap && e.props[size_t(l.pos[0])].type == PlyType::F32 && e.props[size_t(l.pos[1])].type == PlyType::F32 &&
+      e.props[size_t(l.pos[2])].type == PlyType::F32 && off[size_t(l.pos[1])] == off[size_t(l.pos[0])] + 4 &&
+      off[size_t(l.pos[2])] == off[size_t(l.pos[0])] + 8;
   static_assert(sizeof(Vec3f) == 3 * sizeof(float) && std::is_trivially_copyable_v<Vec3f>);
   if (packed_xyz) {
     const uint8_t* p = base + off[size_t(l.pos[0])];
@@ -391,8 +411,9 @@ const uint8_t* decode_faces_fast(const uint8_t* p, const uint8_t* end, FaceSink&
       const IndexT a = load_raw<IndexT>(p), b = load_raw<IndexT>(p + 4), c = load_raw<IndexT>(p + 8);
       // For signed indices a negative value converts to a huge unsigned one and fails the same test.
       if (uint64_t(uint32_t(a)) >= nv || uint64_t(uint32_t(b)) >= nv || uint64_t(uint32_t(c)) >= nv) {
-        sink.bad_index(f, uint64_t(uint32_t(a)) >= nv ? int64_t(a) : uint64_t(uint32_t(b)) >= nv ? int64_t(b)
-                                                                                                 : int64_t(c));
+        sink.bad_index(f, uint64_t(uint32_t(a)) >= nv   ? int64_t(a)
+                          : uint64_t(uint32_t(b)) >= nv ? int64_t(b)
+                                                        : int64_t(c));
       }
       sink.indices.insert(sink.indices.end(), {uint32_t(a), uint32_t(b), uint32_t(c)});
       p += 12;
@@ -416,9 +437,9 @@ void parse_binary(std::string_view data, const PlyHeader& h, const Ctx& ctx, Mes
       size_t stride = 0;
       fixed_offsets(e, stride);
       if (stride > 0 && e.count > uint64_t(end - p) / stride)
-        ctx.fail("element '" + e.name + "'",
-                 "file is truncated (" + std::to_string(e.count) + " records of " + std::to_string(stride) +
-                     " bytes declared, " + std::to_string(end - p) + " bytes left)");
+        ctx.fail("element '" + e.name + "'", "file is truncated (" + std::to_string(e.count) + " records of " +
+                                                 std::to_string(stride) + " bytes declared, " +
+                                                 std::to_string(end - p) + " bytes left)");
       if (e.name == "vertex") {
         decode_vertices_fixed(p, e, vertex_layout(e, ctx), swap, m);
         have_vertices = true;
@@ -580,9 +601,12 @@ MeshDesc parse_ply(std::string_view data, const std::string& file) {
   const PlyElement* vertex = nullptr;
   const PlyElement* face = nullptr;
   for (const auto& e : h.elements) {
-    if (e.name == "vertex" && !vertex) vertex = &e;
-    else if (e.name == "face" && !face) face = &e;
-    else if (e.name == "vertex" || e.name == "face") ctx.fail("header", "duplicate element '" + e.name + "'");
+    if (e.name == "vertex" && !vertex)
+      vertex = &e;
+    else if (e.name == "face" && !face)
+      face = &e;
+    else if (e.name == "vertex" || e.name == "face")
+      ctx.fail("header", "duplicate element '" + e.name + "'");
   }
   if (!vertex) ctx.fail("header", "no 'vertex' element");
   if (!face) ctx.fail("header", "no 'face' element");
@@ -594,8 +618,10 @@ MeshDesc parse_ply(std::string_view data, const std::string& file) {
 
   MeshDesc m;
   m.name = std::filesystem::path(file).filename().string();
-  if (h.format == PlyFormat::Ascii) parse_ascii(data, h, ctx, m);
-  else parse_binary(data, h, ctx, m);
+  if (h.format == PlyFormat::Ascii)
+    parse_ascii(data, h, ctx, m);
+  else
+    parse_binary(data, h, ctx, m);
   validate(m, ctx);
   return m;
 }

@@ -24,18 +24,18 @@ constexpr float kMaxConeAngleDeg = 180.0f;
 constexpr float kMaxBurnPercent = 100.0f;
 
 // Elements each container understands; anything else is reported in SceneDesc::warnings and skipped.
+// clang-format off
 const std::initializer_list<std::string_view> kSceneChildren = {
     "MaxRecursionDepth", "BackgroundColor", "ShadowRayEpsilon", "IntersectionTestEpsilon", "ZeroBasedIndexing",
-    "Cameras",           "Camera",          "Lights",           "BRDFs",                   "Materials",
-    "Transformations",   "VertexData",      "TexCoordData",     "Textures",                "Objects",
-    "BackgroundTexture", "BackfaceCulling", "Integrator",       "IntegratorParams"};
+    "Cameras", "Camera", "Lights", "BRDFs", "Materials", "Transformations", "VertexData", "TexCoordData", "Textures",
+    "Objects", "BackgroundTexture", "BackfaceCulling", "Integrator", "IntegratorParams"};
 const std::initializer_list<std::string_view> kCameraChildren = {
-    "Position",    "Gaze",          "GazePoint",     "Up",           "NearPlane",    "NearDistance",
-    "FovY",        "ImageResolution", "ImageName",   "NumSamples",   "FocusDistance", "ApertureSize",
-    "Tonemap",     "Renderer",      "RendererParams", "GammaCorrection"};
+    "Position", "Gaze", "GazePoint", "Up", "NearPlane", "NearDistance", "FovY", "ImageResolution", "ImageName",
+    "NumSamples", "FocusDistance", "ApertureSize", "Tonemap", "Renderer", "RendererParams", "GammaCorrection"};
 const std::initializer_list<std::string_view> kMaterialChildren = {
-    "AmbientReflectance", "DiffuseReflectance", "SpecularReflectance", "MirrorReflectance",     "PhongExponent",
-    "Roughness",          "Transparency",       "RefractionIndex",     "AbsorptionCoefficient", "AbsorptionIndex"};
+    "AmbientReflectance", "DiffuseReflectance", "SpecularReflectance", "MirrorReflectance", "PhongExponent",
+    "Roughness", "Transparency", "RefractionIndex", "AbsorptionCoefficient", "AbsorptionIndex"};
+// clang-format on
 
 struct BrdfKindName {
   std::string_view name;
@@ -134,7 +134,9 @@ class XmlLoader {
     return (l > 0 ? "line " + std::to_string(l) + " (" : "(") + path_of(n) + ")";
   }
   [[noreturn]] void fail(Node n, const std::string& message) const { throw Error(file_, location(n), message); }
-  void warn(Node n, const std::string& message) { scene_.warnings.push_back(Error::format(file_, location(n), message)); }
+  void warn(Node n, const std::string& message) {
+    scene_.warnings.push_back(Error::format(file_, location(n), message));
+  }
 
   void warn_unknown_children(Node n, std::initializer_list<std::string_view> known) {
     for (Node c : n.children()) {
@@ -202,9 +204,7 @@ class XmlLoader {
     if (!a) return std::nullopt;
     return std::string(trim(a.value()));
   }
-  TextSource attr_source(Node n, const char* name) const {
-    return {file_, line_of(n), path_of(n) + " @" + name};
-  }
+  TextSource attr_source(Node n, const char* name) const { return {file_, line_of(n), path_of(n) + " @" + name}; }
   int int_attr(Node n, const char* name, int fallback) const {
     const auto v = attr(n, name);
     return v ? parse_int(*v, attr_source(n, name)) : fallback;
@@ -314,7 +314,8 @@ class XmlLoader {
       } catch (const Error& e) {
         fail(c, e.what());
       }
-      if (!xforms_[kind].emplace(id, t).second) fail(c, "duplicate " + std::string(c.name()) + " id " + std::to_string(id));
+      if (!xforms_[kind].emplace(id, t).second)
+        fail(c, "duplicate " + std::string(c.name()) + " id " + std::to_string(id));
     }
   }
 
@@ -332,8 +333,8 @@ class XmlLoader {
       const auto kind = size_t(letter - std::begin(kXformLetter));
       const auto it = xforms_[kind].find(int(*id));
       if (it == xforms_[kind].end())
-        fail(n, "'" + std::string(tok) + "' refers to " + std::string(kXformElement[kind]) + " id=" +
-                    std::to_string(*id) + ", which is not defined");
+        fail(n, "'" + std::string(tok) + "' refers to " + std::string(kXformElement[kind]) +
+                    " id=" + std::to_string(*id) + ", which is not defined");
       m = it->second * m;
     }
     return m;
@@ -391,12 +392,17 @@ class XmlLoader {
         m.refraction_index = positive(v, get_float(v), "RefractionIndex");
         m.has_refraction_index = true;
       }
-      if (Node v = opt_child(c, "AbsorptionIndex")) m.absorption_index = non_negative(v, get_float(v), "AbsorptionIndex");
+      if (Node v = opt_child(c, "AbsorptionIndex"))
+        m.absorption_index = non_negative(v, get_float(v), "AbsorptionIndex");
       if (const auto type = attr(c, "type")) {
-        if (*type == "mirror") m.type = MaterialType::Mirror;
-        else if (*type == "dielectric") m.type = MaterialType::Dielectric;
-        else if (*type == "conductor") m.type = MaterialType::Conductor;
-        else fail(c, "unknown material type '" + *type + "' (expected mirror, dielectric or conductor)");
+        if (*type == "mirror")
+          m.type = MaterialType::Mirror;
+        else if (*type == "dielectric")
+          m.type = MaterialType::Dielectric;
+        else if (*type == "conductor")
+          m.type = MaterialType::Conductor;
+        else
+          fail(c, "unknown material type '" + *type + "' (expected mirror, dielectric or conductor)");
       }  // no type (2019): stays Plain; build_material infers dielectric/mirror from Transparency/MirrorReflectance
       if (!material_index_.emplace(m.id, int(scene_.materials.size())).second)
         fail(c, "duplicate Material id " + std::to_string(m.id));
@@ -549,8 +555,10 @@ class XmlLoader {
     if (Node n = opt_child(t, "Saturation")) tm.saturation = non_negative(n, get_float(n), "Saturation");
     if (Node n = opt_child(t, "Gamma")) {
       const std::string v = get_string(n);
-      if (is_srgb(v)) tm.srgb = true;
-      else tm.gamma = positive(n, parse_float(v, source(n)), "Gamma");
+      if (is_srgb(v))
+        tm.srgb = true;
+      else
+        tm.gamma = positive(n, parse_float(v, source(n)), "Gamma");
     }
     return tm;
   }
@@ -565,11 +573,15 @@ class XmlLoader {
     PathTracingFlags f;
     const std::string text = text_of(p);
     for (std::string_view tok : split_whitespace(text)) {
-      if (tok == "NextEventEstimation") f.next_event_estimation = true;
-      else if (tok == "ImportanceSampling") f.importance_sampling = true;
-      else if (tok == "RussianRoulette") f.russian_roulette = true;
-      else fail(p, "unknown renderer parameter '" + std::string(tok) +
-                       "' (expected NextEventEstimation, ImportanceSampling, RussianRoulette)");
+      if (tok == "NextEventEstimation")
+        f.next_event_estimation = true;
+      else if (tok == "ImportanceSampling")
+        f.importance_sampling = true;
+      else if (tok == "RussianRoulette")
+        f.russian_roulette = true;
+      else
+        fail(p, "unknown renderer parameter '" + std::string(tok) +
+                    "' (expected NextEventEstimation, ImportanceSampling, RussianRoulette)");
     }
     return f;
   }
@@ -590,8 +602,8 @@ class XmlLoader {
 
   // ---- lights ------------------------------------------------------------------------------------------------
   void read_lights(Node n) {
-    warn_unknown_children(n, {"AmbientLight", "PointLight", "DirectionalLight", "SpotLight", "AreaLight",
-                              "SphericalDirectionalLight"});
+    warn_unknown_children(
+        n, {"AmbientLight", "PointLight", "DirectionalLight", "SpotLight", "AreaLight", "SphericalDirectionalLight"});
     if (Node a = opt_child(n, "AmbientLight")) scene_.ambient_light = get_rgb(a);
     for (Node l : n.children("PointLight")) {
       warn_unknown_children(l, {"Position", "Intensity"});
@@ -675,9 +687,12 @@ class XmlLoader {
     for (Node c : n.children()) {
       if (c.type() != pugi::node_element) continue;
       const std::string_view kind = c.name();
-      if (kind == "Mesh" || kind == "LightMesh") read_mesh(c, kind == "LightMesh");
-      else if (kind == "Triangle") read_triangle(c);
-      else if (kind == "Sphere" || kind == "LightSphere") read_sphere(c, kind == "LightSphere");
+      if (kind == "Mesh" || kind == "LightMesh")
+        read_mesh(c, kind == "LightMesh");
+      else if (kind == "Triangle")
+        read_triangle(c);
+      else if (kind == "Sphere" || kind == "LightSphere")
+        read_sphere(c, kind == "LightSphere");
     }
   }
 
@@ -749,12 +764,11 @@ class XmlLoader {
   }
 
   void read_sphere(Node c, bool light) {
-    warn_unknown_children(c, light ? std::initializer_list<std::string_view>{"Material", "Center", "Radius",
-                                                                             "Radiance", "Transformations",
-                                                                             "MotionBlur"}
-                                   : std::initializer_list<std::string_view>{"Material", "Center", "Radius",
-                                                                             "Transformations", "MotionBlur",
-                                                                             "Texture", "Textures"});
+    warn_unknown_children(
+        c, light ? std::initializer_list<std::string_view>{"Material", "Center", "Radius", "Radiance",
+                                                           "Transformations", "MotionBlur"}
+                 : std::initializer_list<std::string_view>{"Material", "Center", "Radius", "Transformations",
+                                                           "MotionBlur", "Texture", "Textures"});
     SphereDesc s;
     s.name = std::string(c.name()) + " id=" + std::to_string(object_id(c));
     s.material = material_ref(c, !light);
@@ -800,9 +814,9 @@ class XmlLoader {
   }
   int64_t index_base() const { return zero_based_ ? 0 : 1; }
   std::string out_of_range(int64_t listed, int64_t offset) const {
-    return "vertex index " + std::to_string(listed) + (offset ? " (+ vertexOffset " + std::to_string(offset) + ")" : "") +
-           " is out of range: VertexData has " + std::to_string(vertices_.size()) + " vertices (" +
-           (zero_based_ ? "0-based" : "1-based") + " indices)";
+    return "vertex index " + std::to_string(listed) +
+           (offset ? " (+ vertexOffset " + std::to_string(offset) + ")" : "") + " is out of range: VertexData has " +
+           std::to_string(vertices_.size()) + " vertices (" + (zero_based_ ? "0-based" : "1-based") + " indices)";
   }
 
   void read_faces(Node faces, MeshDesc& m) {
@@ -822,8 +836,10 @@ class XmlLoader {
     } else {
       const int64_t vo = int_attr(faces, "vertexOffset", 0), to = int_attr(faces, "textureOffset", 0);
       std::vector<int64_t> idx;
-      if (const auto bin = attr(faces, "binaryFile")) idx = read_binary_faces(faces, *bin);
-      else idx = parse_ints(text_of(faces), source(faces));
+      if (const auto bin = attr(faces, "binaryFile"))
+        idx = read_binary_faces(faces, *bin);
+      else
+        idx = parse_ints(text_of(faces), source(faces));
       if (idx.size() % 3 != 0) fail(faces, "has " + std::to_string(idx.size()) + " indices, not a multiple of 3");
       build_indexed(faces, idx, vo, to, faces.attribute("textureOffset"), m);
     }
@@ -899,8 +915,8 @@ class XmlLoader {
                                    " objects)");
     if (has_background_texture_) scene_.unsupported.push_back("background texture (BackgroundTexture)");
     if (!scene_.env_lights.empty())
-      scene_.unsupported.push_back("environment light (SphericalDirectionalLight: " +
-                                   std::to_string(scene_.env_lights.size()) + ")");
+      scene_.unsupported.push_back(
+          "environment light (SphericalDirectionalLight: " + std::to_string(scene_.env_lights.size()) + ")");
   }
 
   std::string file_;

@@ -4,8 +4,9 @@
 //  - indices are 1-based unless <ZeroBasedIndexing>true; vertexOffset/textureOffset are added; Sphere Center is a
 //    vertex index (also subject to ZeroBasedIndexing);
 //  - inline meshes get their own compacted vertex arrays (MeshDesc indices are 0-based into MeshDesc::positions);
-//    TexCoordData entry k is the uv of vertex k (shifted by textureOffset) and is attached when every vertex of the
-//    mesh has one;
+//    a face index i names vertex i + vertexOffset and TexCoordData entry i + textureOffset (both offsets default
+//    to 0, so without offsets entry k is the uv of vertex k); uvs are attached when every vertex of the mesh has
+//    one (an out-of-range entry is an error only when textureOffset is given);
 //  - transformation tokens "t1 r2 s3 c1" apply first-token-first: M = T_last ... T_1;
 //  - MeshInstance: resetTransform=true -> M_inst, false (default) -> M_inst * M_base; the base MeshDesc is marked
 //    is_instance_base and stays visible; an instance without <Material> uses the base mesh's;

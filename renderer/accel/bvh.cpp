@@ -1,5 +1,7 @@
 #include "renderer/accel/bvh.h"
 
+#include <immintrin.h>  // SSE2 only: part of the x86-64 baseline
+
 #include <chrono>
 
 #include <tbb/parallel_for.h>
@@ -8,6 +10,7 @@
 #include "renderer/accel/object_ray.h"
 #include "renderer/accel/shape_bounds.h"
 #include "renderer/accel/sphere_intersect.h"
+#include "renderer/accel/traceable_ray.h"
 #include "renderer/accel/triangle_intersect.h"
 
 namespace kiln {
@@ -25,8 +28,34 @@ constexpr uint32_t kKindTriangle = 0, kKindSphere = 1, kKindInstance = 2;
 inline uint32_t ref_kind(PrimRef r) { return r.prim >> kKindShift; }
 inline uint32_t ref_index(PrimRef r) { return r.prim & kIndexMask; }
 
-struct TriVerts {
-  float v[9];  // v0, v1, v2
+// Traversal layout: the binary SAH tree collapsed into a 4-wide tree whose node holds its four child boxes as
+// SoA rows, so one ray is tested against all four with SSE. 128 bytes = two cache lines.
+// A child reference: an interior node index, or a leaf: kLeafBit, kOtherBit for a leaf of spheres/instances
+// (whose index is the first of Tree::refs rather than the first Tri4 packet), item count in bits 32-61.
+using ChildRef = uint64_t;
+constexpr ChildRef kLeafBit = 1ull << 63;
+constexpr ChildRef kOtherBit = 1ull << 62;
+constexpr int kCountShift = 32;
+constexpr ChildRef kCountMask = (1ull << 30) - 1;
+constexpr ChildRef kEmptyChild = kLeafBit;  // a leaf with no items (its box is empty too)
+inline ChildRef make_leaf_ref(bool other, uint32_t first, uint64_t count) {
+  return kLeafBit | (other ? kOtherBit : 0) | (std::min<uint64_t>(count, kCountMask) << kCountShift) | first;
+}
+inline uint32_t ref_first(ChildRef r) { return uint32_t(r); }
+inline uint32_t ref_count(ChildRef r) { return uint32_t((r >> kCountShift) & kCountMask); }
+
+struct alignas(64) Node4 {
+  float b[6][4];       // row 2a: lower bound on axis a, row 2a+1: upper bound; one column per child
+  ChildRef child[4];
+};
+static_assert(sizeof(Node4) == 128);
+constexpr int kWidth = 4;
+
+// Four triangles in SoA form for the SIMD watertight test. Unused lanes hold NaN vertices, which fail every
+// comparison, so they never hit and never trigger the double-precision fallback.
+struct alignas(16) Tri4 {
+  float v[3][3][kWidth];    // [vertex][axis][lane]
+  uint32_t slot[kWidth];    // index into Tree::refs
 };
 
 // Slab distances are rounded; enlarging the far distance by 2 gamma(3) makes the box test conservative so a
@@ -34,16 +63,18 @@ struct TriVerts {
 constexpr float kSlabRobustScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 // Direction components below this are clamped so 1/d stays finite and 0 * inf never produces NaN.
 constexpr float kMinDirComponent = 1e-30f;
-// Traversal stack entries; the builder caps the depth below this (kMaxDepth = 60 in bvh_build.cpp).
-constexpr int kStackSize = 64;
+// Traversal stack entries: at most 3 pushes per level of a 4-wide tree no deeper than the binary tree (< 64).
+constexpr int kStackSize = 192;
 
 struct Tree {
-  std::vector<BvhNode, tbb::cache_aligned_allocator<BvhNode>> nodes;
-  std::vector<PrimRef> refs;   // leaf order
-  std::vector<TriVerts> tris;  // parallel to refs; unused for spheres and instances
-  bool empty() const { return refs.empty(); }
+  std::vector<Node4, tbb::cache_aligned_allocator<Node4>> nodes;
+  std::vector<Tri4, tbb::cache_aligned_allocator<Tri4>> packets;
+  std::vector<PrimRef> refs;  // leaf order
+  ChildRef root = kEmptyChild;
+  BvhTreeStats binary_stats;
+  bool empty() const { return root == kEmptyChild; }
   size_t bytes() const {
-    return nodes.capacity() * sizeof(BvhNode) + refs.capacity() * sizeof(PrimRef) + tris.capacity() * sizeof(TriVerts);
+    return nodes.capacity() * sizeof(Node4) + packets.capacity() * sizeof(Tri4) + refs.capacity() * sizeof(PrimRef);
   }
 };
 
@@ -51,26 +82,156 @@ struct TravRay {
   Vec3f o, d, inv_d;
   WatertightRay wr;
   float tmin;
+  int near[3], far[3];  // rows of Node4::b holding the entry / exit plane on each axis
   explicit TravRay(const Ray& r) : o(r.o), d(r.d), wr(make_watertight_ray(r)), tmin(r.tmin) {
     for (int a = 0; a < 3; ++a) {
       const float c = std::abs(d[a]) >= kMinDirComponent ? d[a] : std::copysign(kMinDirComponent, d[a]);
       inv_d[a] = 1.0f / c;
+      near[a] = 2 * a + (inv_d[a] < 0.0f ? 1 : 0);
+      far[a] = 2 * a + (inv_d[a] < 0.0f ? 0 : 1);
     }
   }
 };
-
-inline bool box_hit(const BvhNode& n, const TravRay& r, float tmax, float& tnear) {
-  const Vec3f t0 = (n.lo - r.o) * r.inv_d, t1 = (n.hi - r.o) * r.inv_d;
-  const Vec3f tn = min(t0, t1), tf = max(t0, t1);
-  tnear = std::max(r.tmin, max_component(tn));
-  const float tfar = std::min(tmax, min_component(tf) * kSlabRobustScale);
-  return tnear <= tfar;
-}
 
 struct Closest {
   float t;
   uint32_t shape = kInvalidId, prim = kInvalidId;
   float b1 = 0, b2 = 0;
+};
+
+// Edge functions that round to exactly zero are recomputed in double (the Woop et al. fallback), lane by lane.
+void refine_edge_functions(int lanes, const float* ax, const float* ay, const float* bx, const float* by,
+                           const float* cx, const float* cy, float* u, float* v, float* w) {
+  for (int i = 0; i < kWidth; ++i) {
+    if (!(lanes & (1 << i))) continue;
+    u[i] = float(double(cx[i]) * double(by[i]) - double(cy[i]) * double(bx[i]));
+    v[i] = float(double(ax[i]) * double(cy[i]) - double(ay[i]) * double(cx[i]));
+    w[i] = float(double(bx[i]) * double(ay[i]) - double(by[i]) * double(ax[i]));
+  }
+}
+
+// The watertight test of triangle_intersect.h on four triangles at once (same operations in the same order, so
+// each lane's result is bit-identical to the scalar test). Returns the bit mask of lanes hit in [tmin, tmax] and
+// their t and barycentrics.
+inline int intersect_tri4(const Tri4& p, const TravRay& r, float tmax, float* t_out, float* b1_out, float* b2_out) {
+  const WatertightRay& w = r.wr;
+  const float o[3] = {w.o.x, w.o.y, w.o.z};
+  const __m128 okx = _mm_set1_ps(o[w.kx]), oky = _mm_set1_ps(o[w.ky]), okz = _mm_set1_ps(o[w.kz]);
+  const __m128 sx = _mm_set1_ps(w.sx), sy = _mm_set1_ps(w.sy), sz = _mm_set1_ps(w.sz);
+  const __m128 az = _mm_sub_ps(_mm_load_ps(p.v[0][w.kz]), okz);
+  const __m128 bz = _mm_sub_ps(_mm_load_ps(p.v[1][w.kz]), okz);
+  const __m128 cz = _mm_sub_ps(_mm_load_ps(p.v[2][w.kz]), okz);
+  const __m128 ax = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[0][w.kx]), okx), _mm_mul_ps(sx, az));
+  const __m128 ay = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[0][w.ky]), oky), _mm_mul_ps(sy, az));
+  const __m128 bx = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[1][w.kx]), okx), _mm_mul_ps(sx, bz));
+  const __m128 by = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[1][w.ky]), oky), _mm_mul_ps(sy, bz));
+  const __m128 cx = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[2][w.kx]), okx), _mm_mul_ps(sx, cz));
+  const __m128 cy = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[2][w.ky]), oky), _mm_mul_ps(sy, cz));
+  __m128 u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
+  __m128 v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
+  __m128 wv = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
+  const __m128 zero = _mm_setzero_ps();
+  const int zeros = _mm_movemask_ps(
+      _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(wv, zero)));
+  if (zeros) [[unlikely]] {
+    alignas(16) float fax[4], fay[4], fbx[4], fby[4], fcx[4], fcy[4], fu[4], fv[4], fw[4];
+    _mm_store_ps(fax, ax), _mm_store_ps(fay, ay), _mm_store_ps(fbx, bx), _mm_store_ps(fby, by);
+    _mm_store_ps(fcx, cx), _mm_store_ps(fcy, cy), _mm_store_ps(fu, u), _mm_store_ps(fv, v), _mm_store_ps(fw, wv);
+    refine_edge_functions(zeros, fax, fay, fbx, fby, fcx, fcy, fu, fv, fw);
+    u = _mm_load_ps(fu), v = _mm_load_ps(fv), wv = _mm_load_ps(fw);
+  }
+  const __m128 all_ge = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmpge_ps(v, zero)), _mm_cmpge_ps(wv, zero));
+  const __m128 all_le = _mm_and_ps(_mm_and_ps(_mm_cmple_ps(u, zero), _mm_cmple_ps(v, zero)), _mm_cmple_ps(wv, zero));
+  const __m128 det = _mm_add_ps(_mm_add_ps(u, v), wv);
+  __m128 ok = _mm_and_ps(_mm_or_ps(all_ge, all_le), _mm_cmpneq_ps(det, zero));
+  if (!_mm_movemask_ps(ok)) return 0;
+  const __m128 tdet = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(sz, az)), _mm_mul_ps(v, _mm_mul_ps(sz, bz))),
+                                 _mm_mul_ps(wv, _mm_mul_ps(sz, cz)));
+  const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
+  const __m128 t = _mm_mul_ps(tdet, inv_det);
+  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(t, _mm_set1_ps(r.tmin)), _mm_cmple_ps(t, _mm_set1_ps(tmax))));
+  const int mask = _mm_movemask_ps(ok);
+  if (mask) {
+    _mm_storeu_ps(t_out, t);
+    _mm_storeu_ps(b1_out, _mm_mul_ps(v, inv_det));
+    _mm_storeu_ps(b2_out, _mm_mul_ps(wv, inv_det));
+  }
+  return mask;
+}
+
+// Collapses the binary tree into Node4s (pre-order, so a node's children follow it) and lays leaf primitives out
+// as Tri4 packets in the same order.
+class Collapser {
+ public:
+  Collapser(const BvhBuildResult& bin, Tree& out) : bin_(bin), out_(out) {}
+  template <typename VertexOf>
+  void run(VertexOf& vertex_of) {
+    out_.root = bin_.nodes[kBvhRoot].is_leaf() ? leaf_ref(kBvhRoot, vertex_of) : interior(kBvhRoot, vertex_of);
+  }
+
+ private:
+  const BvhBuildResult& bin_;
+  Tree& out_;
+
+  template <typename VertexOf>
+  ChildRef leaf_ref(uint32_t bin_node, VertexOf& vertex_of) {
+    const BvhNode& n = bin_.nodes[bin_node];
+    if (n.count == 0) return kEmptyChild;
+    if (ref_kind(out_.refs[n.offset]) != kKindTriangle) return make_leaf_ref(true, n.offset, n.count);
+    const uint32_t first = uint32_t(out_.packets.size());
+    for (uint32_t i = 0; i < n.count; i += kWidth) {
+      Tri4 p;
+      for (int lane = 0; lane < kWidth; ++lane) {
+        const bool used = i + uint32_t(lane) < n.count;
+        const uint32_t slot = n.offset + i + uint32_t(lane);
+        p.slot[lane] = used ? slot : kInvalidId;
+        for (int k = 0; k < 3; ++k) {
+          const Vec3f v = used ? vertex_of(out_.refs[slot], k) : Vec3f(std::numeric_limits<float>::quiet_NaN());
+          for (int a = 0; a < 3; ++a) p.v[k][a][lane] = v[a];
+        }
+      }
+      out_.packets.push_back(p);
+    }
+    return make_leaf_ref(false, first, (n.count + kWidth - 1) / kWidth);
+  }
+
+  template <typename VertexOf>
+  ChildRef interior(uint32_t bin_node, VertexOf& vertex_of) {
+    // Open up to four children, always expanding the largest interior one (the likeliest to be visited).
+    uint32_t kids[kWidth] = {bin_.nodes[bin_node].offset, bin_.nodes[bin_node].offset + 1, 0, 0};
+    int n = 2;
+    while (n < kWidth) {
+      int best = -1;
+      float best_area = -1.0f;
+      for (int i = 0; i < n; ++i) {
+        const BvhNode& c = bin_.nodes[kids[i]];
+        if (!c.is_leaf() && c.bounds().surface_area() > best_area) {
+          best = i;
+          best_area = c.bounds().surface_area();
+        }
+      }
+      if (best < 0) break;
+      const uint32_t open = kids[best];
+      kids[best] = bin_.nodes[open].offset;
+      kids[n++] = bin_.nodes[open].offset + 1;
+    }
+    const uint32_t index = uint32_t(out_.nodes.size());
+    out_.nodes.emplace_back();
+    Node4 node;
+    for (int i = 0; i < kWidth; ++i) {
+      const bool used = i < n;
+      const Bounds3f b = used ? bin_.nodes[kids[i]].bounds() : Bounds3f();
+      for (int a = 0; a < 3; ++a) {
+        node.b[2 * a][i] = b.lo[a];
+        node.b[2 * a + 1][i] = b.hi[a];
+      }
+      node.child[i] = !used                               ? kEmptyChild
+                      : bin_.nodes[kids[i]].is_leaf() ? leaf_ref(kids[i], vertex_of)
+                                                      : interior(kids[i], vertex_of);
+    }
+    out_.nodes[index] = node;
+    return index;
+  }
 };
 
 }  // namespace
@@ -79,7 +240,7 @@ struct Bvh::Impl {
   const WorldGeometry& g;
   BvhOptions options;
   Tree world;
-  std::vector<Tree> prototypes;             // empty trees for prototypes no instance uses
+  std::vector<Tree> prototypes;  // empty trees for prototypes no instance uses
   std::vector<Transform> instance_to_object;
   std::vector<Transform> sphere_to_object;
   std::vector<uint8_t> sphere_transformed;
@@ -87,48 +248,46 @@ struct Bvh::Impl {
 
   Impl(const WorldGeometry& geometry, const BvhOptions& opt) : g(geometry), options(opt) {}
 
+  // Builds over bounds (prims described by refs), keeps refs in leaf order and packs triangle leaves, whose
+  // vertices come from mesh_of(ref).
+  template <typename MeshOf>
+  Tree make_tree(const std::vector<Bounds3f>& bounds, const std::vector<PrimRef>& refs, MeshOf&& mesh_of) const {
+    std::vector<uint8_t> cls(refs.size());
+    bool mixed = false;
+    for (size_t i = 0; i < refs.size(); ++i) {
+      cls[i] = uint8_t(ref_kind(refs[i]));
+      mixed |= cls[i] != cls[0];
+    }
+    const BvhBuildResult built = build_bvh(bounds, options.build, mixed ? std::span<const uint8_t>(cls) : std::span<const uint8_t>());
+    Tree t;
+    t.binary_stats = bvh_tree_stats(built.nodes, options.build);
+    if (built.order.empty()) return t;
+    t.refs.resize(built.order.size());
+    for (size_t i = 0; i < built.order.size(); ++i) t.refs[i] = refs[built.order[i]];
+    t.nodes.reserve(built.nodes.size() / 2 + 1);
+    t.packets.reserve(built.order.size() / 2 + 1);
+    auto vertex_of = [&](PrimRef r, int k) { return mesh_of(r).vertex(ref_index(r), k); };
+    Collapser(built, t).run(vertex_of);
+    return t;
+  }
+
   // Triangle-only tree over one prototype mesh (object space).
   Tree build_mesh_tree(const TriangleMesh& m) const {
     const size_t n = m.triangle_count();
     std::vector<Bounds3f> bounds(n);
+    std::vector<PrimRef> refs(n);
     tbb::parallel_for(size_t(0), n, [&](size_t t) {
       Bounds3f b(m.vertex(t, 0));
       b.extend(m.vertex(t, 1));
       b.extend(m.vertex(t, 2));
       bounds[t] = b;
+      refs[t] = {0, uint32_t(t)};
     });
-    std::vector<PrimRef> refs(n);
-    for (size_t t = 0; t < n; ++t) refs[t] = {0, uint32_t(t)};
-    return finish_tree(bounds, refs, [&](PrimRef) -> const TriangleMesh& { return m; });
-  }
-
-  // Builds over bounds, then stores refs and triangle vertices (of mesh_of(ref)) in leaf order.
-  template <typename MeshOf>
-  Tree finish_tree(const std::vector<Bounds3f>& bounds, const std::vector<PrimRef>& refs, MeshOf&& mesh_of) const {
-    BvhBuildResult built = build_bvh(bounds, options.build);
-    Tree t;
-    t.nodes = std::move(built.nodes);
-    const size_t n = built.order.size();
-    t.refs.resize(n);
-    t.tris.resize(n);
-    tbb::parallel_for(size_t(0), n, [&](size_t i) {
-      const PrimRef r = refs[built.order[i]];
-      t.refs[i] = r;
-      if (ref_kind(r) != kKindTriangle) return;
-      const TriangleMesh& m = mesh_of(r);
-      for (int k = 0; k < 3; ++k) {
-        const Vec3f v = m.vertex(ref_index(r), k);
-        t.tris[i].v[3 * k] = v.x;
-        t.tris[i].v[3 * k + 1] = v.y;
-        t.tris[i].v[3 * k + 2] = v.z;
-      }
-    });
-    return t;
+    return make_tree(bounds, refs, [&](PrimRef) -> const TriangleMesh& { return m; });
   }
 
   void build() {
     const auto start = std::chrono::steady_clock::now();
-    // Prototype trees first (instance bounds do not need them, but instance leaves do).
     std::vector<uint8_t> used(g.prototypes.size(), 0);
     for (const MeshInstance& inst : g.instances) used[inst.prototype] = 1;
     prototypes.resize(g.prototypes.size());
@@ -147,9 +306,8 @@ struct Bvh::Impl {
       const Shape& s = g.shapes[i];
       first_tri[i + 1] = first_tri[i] + (s.kind == ShapeKind::Mesh ? g.meshes[s.index].triangle_count() : 0);
     }
-    const size_t ntri = first_tri.back();
-    std::vector<Bounds3f> bounds(ntri);
-    std::vector<PrimRef> refs(ntri);
+    std::vector<Bounds3f> bounds(first_tri.back());
+    std::vector<PrimRef> refs(first_tri.back());
     for (uint32_t i = 0; i < g.shapes.size(); ++i) {
       const Shape& s = g.shapes[i];
       if (s.kind != ShapeKind::Mesh) continue;
@@ -180,10 +338,11 @@ struct Bvh::Impl {
       bounds.erase(bounds.begin() + ptrdiff_t(*options.debug_drop_primitive));
       refs.erase(refs.begin() + ptrdiff_t(*options.debug_drop_primitive));
     }
-    world = finish_tree(bounds, refs, [&](PrimRef r) -> const TriangleMesh& { return g.meshes[g.shapes[r.shape].index]; });
+    world = make_tree(bounds, refs, [&](PrimRef r) -> const TriangleMesh& { return g.meshes[g.shapes[r.shape].index]; });
     stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    stats.world = bvh_tree_stats(world.nodes, options.build);
+    stats.world = world.binary_stats;
+    stats.wide_nodes = world.nodes.size();
     stats.bytes = world.bytes() + (instance_to_object.capacity() + sphere_to_object.capacity()) * sizeof(Transform);
     for (const Tree& t : prototypes) {
       if (t.empty()) continue;
@@ -198,68 +357,106 @@ struct Bvh::Impl {
   template <bool kAny>
   bool traverse(const Tree& tree, const TravRay& r, float& tmax, Closest& best, uint32_t shape_override) const {
     if (tree.empty()) return false;
-    float tnear;
-    if (!box_hit(tree.nodes[kBvhRoot], r, tmax, tnear)) return false;
     struct Entry {
-      uint32_t node;
+      ChildRef ref;
       float tnear;
     };
     Entry stack[kStackSize];
     int sp = 0;
-    uint32_t node = kBvhRoot;
+    stack[sp++] = {tree.root, r.tmin};
     bool found = false;
-    const BvhNode* nodes = tree.nodes.data();
-    for (;;) {
-      const BvhNode& n = nodes[node];
-      if (n.is_leaf()) {
-        for (uint32_t i = n.offset, end = n.offset + n.count; i < end; ++i) {
-          if (leaf_prim<kAny>(tree, i, r, tmax, best, shape_override)) {
-            if constexpr (kAny) return true;
-            found = true;
-          }
-        }
-      } else {
-        const uint32_t c = n.offset;
-        float t0, t1;
-        const bool h0 = box_hit(nodes[c], r, tmax, t0);
-        const bool h1 = box_hit(nodes[c + 1], r, tmax, t1);
-        if (h0 && h1) {
-          const bool swap = t1 < t0;
-          node = c + (swap ? 1 : 0);
-          stack[sp++] = {c + (swap ? 0u : 1u), swap ? t0 : t1};
-          continue;
-        }
-        if (h0 || h1) {
-          node = h0 ? c : c + 1;
-          continue;
-        }
-      }
-      // Pop the next subtree still closer than the closest hit so far.
-      for (;;) {
-        if (sp == 0) return found;
-        const Entry e = stack[--sp];
-        if (e.tnear <= tmax) {
-          node = e.node;
+    const __m128 ox = _mm_set1_ps(r.o.x), oy = _mm_set1_ps(r.o.y), oz = _mm_set1_ps(r.o.z);
+    const __m128 ix = _mm_set1_ps(r.inv_d.x), iy = _mm_set1_ps(r.inv_d.y), iz = _mm_set1_ps(r.inv_d.z);
+    const __m128 tminv = _mm_set1_ps(r.tmin), robust = _mm_set1_ps(kSlabRobustScale);
+    const Node4* nodes = tree.nodes.data();
+    while (sp > 0) {
+      const Entry e = stack[--sp];
+      if (e.tnear > tmax) continue;  // a closer hit was found since this subtree was pushed
+      ChildRef ref = e.ref;
+      bool descend = true;
+      while (!(ref & kLeafBit)) {
+        const Node4& n = nodes[ref];
+        const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.b[r.near[0]]), ox), ix);
+        const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.b[r.near[1]]), oy), iy);
+        const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.b[r.near[2]]), oz), iz);
+        const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.b[r.far[0]]), ox), ix);
+        const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.b[r.far[1]]), oy), iy);
+        const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.b[r.far[2]]), oz), iz);
+        const __m128 tn = _mm_max_ps(_mm_max_ps(tx0, ty0), _mm_max_ps(tz0, tminv));
+        const __m128 tf = _mm_min_ps(_mm_mul_ps(_mm_min_ps(_mm_min_ps(tx1, ty1), tz1), robust), _mm_set1_ps(tmax));
+        int mask = _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+        if (!mask) {
+          descend = false;
           break;
         }
+        alignas(16) float dist[4];
+        _mm_store_ps(dist, tn);
+        int i = __builtin_ctz(unsigned(mask));
+        mask &= mask - 1;
+        if (!mask) {  // one child hit: no stack traffic
+          ref = n.child[i];
+          continue;
+        }
+        // Two to four children hit: push all but the nearest, farthest first, so they pop near to far.
+        Entry hits[4];
+        int nh = 0;
+        hits[nh++] = {n.child[i], dist[i]};
+        while (mask) {
+          i = __builtin_ctz(unsigned(mask));
+          mask &= mask - 1;
+          Entry h{n.child[i], dist[i]};
+          int k = nh++;
+          for (; k > 0 && hits[k - 1].tnear > h.tnear; --k) hits[k] = hits[k - 1];
+          hits[k] = h;
+        }
+        for (int k = nh - 1; k >= 1; --k) stack[sp++] = hits[k];
+        ref = hits[0].ref;
+      }
+      if (!descend) continue;
+      if (leaf<kAny>(tree, ref, r, tmax, best, shape_override)) {
+        if constexpr (kAny) return true;
+        found = true;
       }
     }
+    return found;
   }
 
   template <bool kAny>
-  bool leaf_prim(const Tree& tree, uint32_t i, const TravRay& r, float& tmax, Closest& best,
-                 uint32_t shape_override) const {
-    const PrimRef ref = tree.refs[i];
-    const uint32_t kind = ref_kind(ref);
-    if (kind == kKindTriangle) [[likely]] {
-      const float* v = tree.tris[i].v;
-      TriangleHit th;
-      if (!intersect_triangle(r.wr, v, v + 3, v + 6, r.tmin, tmax, th)) return false;
-      tmax = th.t;
-      if constexpr (!kAny) best = {th.t, shape_override != kInvalidId ? shape_override : ref.shape, ref.prim, th.b1, th.b2};
-      return true;
+  bool leaf(const Tree& tree, ChildRef ref, const TravRay& r, float& tmax, Closest& best,
+            uint32_t shape_override) const {
+    const uint32_t first = ref_first(ref), count = ref_count(ref);
+    bool found = false;
+    if (ref & kOtherBit) [[unlikely]] {
+      for (uint32_t i = first; i < first + count; ++i) {
+        if (other_prim<kAny>(tree.refs[i], r, tmax, best)) {
+          if constexpr (kAny) return true;
+          found = true;
+        }
+      }
+      return found;
     }
-    if (kind == kKindSphere) {
+    for (uint32_t p = first; p < first + count; ++p) {
+      alignas(16) float t[4], b1[4], b2[4];
+      int mask = intersect_tri4(tree.packets[p], r, tmax, t, b1, b2);
+      if (!mask) continue;
+      if constexpr (kAny) return true;
+      int lane = __builtin_ctz(unsigned(mask));
+      for (mask &= mask - 1; mask; mask &= mask - 1) {
+        const int l = __builtin_ctz(unsigned(mask));
+        if (t[l] < t[lane]) lane = l;
+      }
+      const PrimRef pr = tree.refs[tree.packets[p].slot[lane]];
+      tmax = t[lane];
+      best = {t[lane], shape_override != kInvalidId ? shape_override : pr.shape, pr.prim, b1[lane], b2[lane]};
+      found = true;
+    }
+    return found;
+  }
+
+  // A sphere or an instance (whose prototype tree is traversed with the ray in object space).
+  template <bool kAny>
+  bool other_prim(const PrimRef ref, const TravRay& r, float& tmax, Closest& best) const {
+    if (ref_kind(ref) == kKindSphere) {
       const uint32_t si = ref_index(ref);
       const SphereShape& s = g.spheres[si];
       Vec3f o = r.o, d = r.d;
@@ -286,6 +483,7 @@ Bvh::Bvh(const WorldGeometry& geometry, const BvhOptions& options)
 Bvh::~Bvh() = default;
 
 bool Bvh::intersect(const Ray& ray, Hit& hit) const {
+  if (!traceable(ray)) return false;
   float tmax = ray.tmax;
   Closest best{ray.tmax};
   if (!impl_->traverse<false>(impl_->world, TravRay(ray), tmax, best, kInvalidId)) return false;
@@ -307,6 +505,7 @@ bool Bvh::intersect(const Ray& ray, Hit& hit) const {
 }
 
 bool Bvh::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   float tmax = ray.tmax;
   Closest unused{ray.tmax};
   return impl_->traverse<true>(impl_->world, TravRay(ray), tmax, unused, kInvalidId);

@@ -35,10 +35,11 @@ static_assert(sizeof(BvhNode) == 32);
 inline constexpr uint32_t kBvhRoot = 0;
 
 struct BvhBuildOptions {
-  int bins_per_axis = 16;           // clamped to [kMinBins, kMaxBins]
+  int bins_per_axis = 16;           // clamped to [2, 32]
   uint32_t max_leaf_size = 8;       // a leaf never holds more unless its primitives cannot be separated
+  uint32_t leaf_block = 1;          // primitives tested together (SIMD width): a leaf costs ceil(n / leaf_block)
   float traversal_cost = 1.0f;      // SAH cost of visiting an interior node ...
-  float intersection_cost = 1.0f;   // ... relative to intersecting one primitive
+  float intersection_cost = 1.0f;   // ... relative to intersecting one block of primitives
 };
 
 struct BvhBuildResult {
@@ -46,8 +47,10 @@ struct BvhBuildResult {
   std::vector<uint32_t> order;  // leaf primitive slot i holds input primitive order[i]
 };
 
-// Empty prim_bounds gives a single empty leaf.
-BvhBuildResult build_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options = {});
+// Empty prim_bounds gives a single empty leaf. When prim_class is given (one entry per primitive), every leaf
+// holds primitives of one class only (e.g. triangles apart from spheres, so leaves can be stored as SIMD packets).
+BvhBuildResult build_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options = {},
+                         std::span<const uint8_t> prim_class = {});
 
 struct BvhTreeStats {
   double sah_cost = 0;  // expected cost of a random ray hitting the root box, in BvhBuildOptions units

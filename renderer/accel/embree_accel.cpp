@@ -13,6 +13,7 @@
 #include "renderer/accel/object_ray.h"
 #include "renderer/accel/shape_bounds.h"
 #include "renderer/accel/sphere_intersect.h"
+#include "renderer/accel/traceable_ray.h"
 
 namespace kiln {
 namespace {
@@ -227,6 +228,7 @@ RTCRay to_rtc(const Ray& r) {
 }  // namespace
 
 bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
+  if (!traceable(ray)) return false;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh;
@@ -254,6 +256,7 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
 }
 
 bool EmbreeAccel::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRay r = to_rtc(ray);

@@ -33,6 +33,8 @@ struct RenderArgs {
 
 int cmd_render(const RenderArgs& args);
 int cmd_info(const std::string& scene_path, int subdivide);
+// Prints block-luminance statistics and MSE / relMSE of image against reference (both EXR) as JSON.
+int cmd_compare(const std::string& image, const std::string& reference, int block);
 
 // Runs fn, mapping kiln::Error (bad input) to a one-line message and exit code 2.
 int run_guarded(const std::function<int()>& fn);

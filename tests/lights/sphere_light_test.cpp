@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/frame.h"
 #include "light_test_util.h"
 #include "lights/sphere_light.h"
 #include "support/chi2.h"
@@ -133,8 +134,69 @@ TEST(SphereLight, EllipsoidConeSamplingMatchesPdfChi2) {
         const auto p = intersect(xf, center, 1.0f, q.p, w);
         return p ? light.pdf_li(q, *p, {}, 0) : 0.0;
       },
-      1000000, 36, 72, 0.01, 2, 21);
+      1000000, 30, 60, 0.01, 2, 21);
   EXPECT_TRUE(r.passed) << r.message;
+}
+
+// Quadrature-free check of the same density: for any region R inside the light's silhouette,
+// E[1_R(wi) / pdf(wi)] = |R|. Caps of directions around points inside the ellipsoid have |R| = 2 pi (1 - cos a).
+TEST(SphereLight, EllipsoidConeDensityRecoversCapSolidAngles) {
+  const Transform xf = ellipsoid_transform();
+  const Vec3f center{0.2f, -0.1f, 0.1f};
+  const SphereLight light(center, 1.0f, xf, kRadiance);
+  const LightQuery q{{0, 0, 0}, {0, 0, 0}};
+  const float cap_half_angle = radians(4.0f);
+  const float cos_cap = std::cos(cap_half_angle);
+  for (Vec3f inner : {Vec3f{0, 0, 0}, Vec3f{0.5f, 0, 0}, Vec3f{0, -0.4f, 0}, Vec3f{0, 0, 0.5f}}) {
+    const Vec3f axis = normalize(xf.point(center + inner) - q.p);
+    // The cap must lie inside the silhouette (whose cross-section is convex): check its rim.
+    const Frame f(axis);
+    for (int k = 0; k < 64; ++k) {
+      const float phi = 2 * kPi * float(k) / 64;
+      const Vec3f w = f.to_world({std::sin(cap_half_angle) * std::cos(phi), std::sin(cap_half_angle) * std::sin(phi), cos_cap});
+      ASSERT_TRUE(intersect(xf, center, 1.0f, q.p, w).has_value()) << "test setup: cap leaves the silhouette";
+    }
+    const auto e = estimate(
+        [&](Rng& rng) -> double {
+          const auto s = light.sample_li(q, rng.next_2d());
+          return (s && dot(s->wi, axis) >= cos_cap) ? 1.0 / double(s->pdf) : 0.0;
+        },
+        400000, 41);
+    const double expected = 2 * test::kPiD * (1 - double(cos_cap));
+    EXPECT_TRUE(within_error(e, expected)) << "cap around object point (" << inner.x << ", " << inner.y << ", "
+                                           << inner.z << "): " << e.mean << " +- " << e.std_error << " vs " << expected;
+  }
+}
+
+// E[1 / pdf(wi)] over all samples is the solid angle of the silhouette. That cone is convex, so with polar angle
+// theta_b(phi) of its rim around an inner axis, Omega = integral of (1 - cos theta_b) dphi (trapezoid rule on a
+// smooth periodic integrand, rim found by bisection against an independent ray/ellipsoid intersection).
+TEST(SphereLight, EllipsoidConeDensityIntegratesToTheSilhouetteSolidAngle) {
+  const Transform xf = ellipsoid_transform();
+  const Vec3f center{0.2f, -0.1f, 0.1f};
+  const SphereLight light(center, 1.0f, xf, kRadiance);
+  const LightQuery q{{0, 0, 0}, {0, 0, 0}};
+  const Frame f(normalize(xf.point(center) - q.p));
+  constexpr int kAzimuths = 256;
+  double omega = 0;
+  for (int k = 0; k < kAzimuths; ++k) {
+    const double phi = 2 * test::kPiD * (k + 0.5) / kAzimuths;
+    double lo = 0, hi = test::kPiD / 2;  // hit at lo, miss at hi
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      const Vec3f w = f.to_world({float(std::sin(mid) * std::cos(phi)), float(std::sin(mid) * std::sin(phi)),
+                                  float(std::cos(mid))});
+      (intersect(xf, center, 1.0f, q.p, w) ? lo : hi) = mid;
+    }
+    omega += (1 - std::cos(lo)) * 2 * test::kPiD / kAzimuths;
+  }
+  const auto e = estimate(
+      [&](Rng& rng) -> double {
+        const auto s = light.sample_li(q, rng.next_2d());
+        return s ? 1.0 / double(s->pdf) : 0.0;
+      },
+      1600000, 43);
+  EXPECT_TRUE(within_error(e, omega)) << e.mean << " +- " << e.std_error << " vs " << omega;
 }
 
 TEST(SphereLight, EllipsoidAreaSamplingMatchesPdfChi2) {

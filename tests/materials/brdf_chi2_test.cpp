@@ -45,9 +45,11 @@ std::vector<Chi2Case> make_cases() {
     add("BlinnMix" + vn, surface_material(BlinnPhong{Rgb(0.3f), Rgb(0.6f), 10.0f, v}), 30, 60);
   }
   add("PhongSharp_p800", surface_material(Phong{Rgb(0), Rgb(1), 800.0f, PhongVariant::ModifiedNormalized}), 90, 180);
-  add("BlinnSharp_p800", surface_material(BlinnPhong{Rgb(0), Rgb(1), 800.0f, PhongVariant::ModifiedNormalized}), 90, 180);
+  add("BlinnSharp_p800", surface_material(BlinnPhong{Rgb(0), Rgb(1), 800.0f, PhongVariant::ModifiedNormalized}), 90,
+      180);
   add("TS_p1", surface_material(TorranceSparrow{Rgb(0), Rgb(1), 1.0f, 1.5f, 0.0f, false}), 20, 40);
-  add("TS_p50_mix_kdfresnel", surface_material(TorranceSparrow{Rgb(0.5f), Rgb(0.5f), 50.0f, 0.37f, 2.82f, true}), 40, 80);
+  add("TS_p50_mix_kdfresnel", surface_material(TorranceSparrow{Rgb(0.5f), Rgb(0.5f), 50.0f, 0.37f, 2.82f, true}), 40,
+      80);
   // Surface + delta mixtures: delta samples are "failed" for the sphere test and must occur at the rate
   // delta_probability; the dielectric one is seen from inside (wo.z < 0) through the two-sided flip.
   Material mirror_mix = surface_material(BlinnPhong{Rgb(0.4f), Rgb(0.3f), 20.0f, PhongVariant::ModifiedNormalized});
@@ -56,7 +58,8 @@ std::vector<Chi2Case> make_cases() {
   add("BlinnPlusMirror", mirror_mix, 30, 60);
   Material glass = surface_material(Phong{Rgb(0), Rgb(0.3f), 20.0f, PhongVariant::ModifiedNormalized});
   glass.delta = Dielectric{1.5f};
-  for (float c : kIncidences) cases.push_back({"PhongPlusGlassInside_cos" + std::to_string(c), glass, -c, 30, 60, kSamples});
+  for (float c : kIncidences)
+    cases.push_back({"PhongPlusGlassInside_cos" + std::to_string(c), glass, -c, 30, 60, kSamples});
   return cases;
 }
 

@@ -174,8 +174,13 @@ TEST(BrdfAlbedo, NormalIncidenceClosedForms) {
     // Phong at normal incidence: ∫cos^p = 2pi/(p+1), ∫cos^p cos = 2pi/(p+2); normalized lobe: exactly 1.
     const double phong[] = {2 * kPiD / (p + 1), 2 * kPiD / (p + 2), 1.0};
     // Blinn: theta_i = 2 theta_h, dω_i = 4 cos(theta_h) dω_h, up to theta_h = 45 degrees (Simpson in double).
-    const double blinn_orig = simpson([&](double th) { return std::pow(std::cos(th), p) * 4 * std::cos(th) * 2 * kPiD * std::sin(th); }, 0, kPiD / 4);
-    const double blinn_mod = simpson([&](double th) { return std::pow(std::cos(th), p) * std::cos(2 * th) * 4 * std::cos(th) * 2 * kPiD * std::sin(th); }, 0, kPiD / 4);
+    const double blinn_orig = simpson(
+        [&](double th) { return std::pow(std::cos(th), p) * 4 * std::cos(th) * 2 * kPiD * std::sin(th); }, 0, kPiD / 4);
+    const double blinn_mod = simpson(
+        [&](double th) {
+          return std::pow(std::cos(th), p) * std::cos(2 * th) * 4 * std::cos(th) * 2 * kPiD * std::sin(th);
+        },
+        0, kPiD / 4);
     const double blinn[] = {blinn_orig, blinn_mod, (p + 8) / (8 * kPiD) * blinn_mod};
     for (int v = 0; v < 3; ++v) {
       const Phong ph{Rgb(0), Rgb(1), p, kVariants[v]};
@@ -184,8 +189,10 @@ TEST(BrdfAlbedo, NormalIncidenceClosedForms) {
       EXPECT_NEAR(bp.glossy_albedo_at_normal(), blinn[v], 1e-5 * blinn[v]) << p << " " << v;
       const AlbedoEstimate ap = estimate_albedo(surface_material(ph), n, 100000, 21 + v);
       const AlbedoEstimate ab = estimate_albedo(surface_material(bp), n, 100000, 31 + v);
-      EXPECT_NEAR(ap.mean, phong[v], kSigmas * ap.stderr_ + 1e-6) << "Phong " << variant_name(kVariants[v]) << " p " << p;
-      EXPECT_NEAR(ab.mean, blinn[v], kSigmas * ab.stderr_ + 1e-6) << "Blinn " << variant_name(kVariants[v]) << " p " << p;
+      EXPECT_NEAR(ap.mean, phong[v], kSigmas * ap.stderr_ + 1e-6)
+          << "Phong " << variant_name(kVariants[v]) << " p " << p;
+      EXPECT_NEAR(ab.mean, blinn[v], kSigmas * ab.stderr_ + 1e-6)
+          << "Blinn " << variant_name(kVariants[v]) << " p " << p;
     }
   }
 }
@@ -216,11 +223,14 @@ TEST(BrdfAlbedo, EnergyConservingModelsReflectAtMostOne) {
     const std::string ps = std::to_string(int(p));
     for (float kd : {0.0f, 0.5f}) {
       const std::string kds = kd > 0 ? "_mix" : "";
-      cases.push_back({"PhongNormalized" + ps + kds, surface_material(Phong{Rgb(kd), Rgb(1 - kd), p, PhongVariant::ModifiedNormalized})});
+      cases.push_back({"PhongNormalized" + ps + kds,
+                       surface_material(Phong{Rgb(kd), Rgb(1 - kd), p, PhongVariant::ModifiedNormalized})});
       cases.push_back({"TS" + ps + kds, surface_material(TorranceSparrow{Rgb(kd), Rgb(1 - kd), p, 1.5f, 0.0f, false})});
       // A perfect reflector (R0 = 1 through huge kappa) is the worst case for the microfacet term.
-      cases.push_back({"TSmetal" + ps + kds, surface_material(TorranceSparrow{Rgb(kd), Rgb(1 - kd), p, 1.0f, 1e4f, false})});
-      cases.push_back({"TSkdfresnel" + ps + kds, surface_material(TorranceSparrow{Rgb(kd), Rgb(1 - kd), p, 0.37f, 2.82f, true})});
+      cases.push_back(
+          {"TSmetal" + ps + kds, surface_material(TorranceSparrow{Rgb(kd), Rgb(1 - kd), p, 1.0f, 1e4f, false})});
+      cases.push_back(
+          {"TSkdfresnel" + ps + kds, surface_material(TorranceSparrow{Rgb(kd), Rgb(1 - kd), p, 0.37f, 2.82f, true})});
     }
   }
   cases.push_back({"Lambert", surface_material(Lambert{Rgb(1)})});

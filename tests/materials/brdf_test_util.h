@@ -16,9 +16,12 @@ inline Vec3f direction_at(double cos_theta, double phi = 0.3) {
 
 inline std::string variant_name(PhongVariant v) {
   switch (v) {
-    case PhongVariant::Original: return "Original";
-    case PhongVariant::Modified: return "Modified";
-    case PhongVariant::ModifiedNormalized: return "Normalized";
+    case PhongVariant::Original:
+      return "Original";
+    case PhongVariant::Modified:
+      return "Modified";
+    case PhongVariant::ModifiedNormalized:
+      return "Normalized";
   }
   return "?";
 }

@@ -1,9 +1,10 @@
 // Fresnel equations and Snell refraction against closed forms, an independent conductor formulation and
 // literal reference values.
+#include "materials/fresnel.h"
+
 #include <gtest/gtest.h>
 
 #include "brdf_test_util.h"
-#include "materials/fresnel.h"
 
 namespace kiln::test {
 namespace {

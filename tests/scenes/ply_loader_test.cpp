@@ -1,6 +1,8 @@
 // PLY loading: ASCII polygons triangulated as fans, binary little/big endian round trips over every scalar type,
 // skipped elements/properties, the fast and generic face paths agreeing, and validation (truncation at every
 // byte, bad indices, short faces, bad headers, non-finite values) as kiln::Error naming the file.
+#include "scenes/ply_loader.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "scenes/ply_loader.h"
 
 namespace kiln {
 namespace {
@@ -88,8 +89,7 @@ std::string fixture_binary(bool big, bool extra_face_property) {
   h += "end_header\n";
   Bytes b(big);
   for (size_t i = 0; i < 5; ++i)
-    b.put(f.p[i].x).put(f.p[i].y).put(f.p[i].z).put(f.n[i].x).put(f.n[i].y).put(f.n[i].z).put(f.uv[i].x).put(
-        f.uv[i].y);
+    b.put(f.p[i].x).put(f.p[i].y).put(f.p[i].z).put(f.n[i].x).put(f.n[i].y).put(f.n[i].z).put(f.uv[i].x).put(f.uv[i].y);
   for (const auto& face : f.faces) {
     b.put(uint8_t(face.size()));
     for (int32_t v : face) b.put(v);
@@ -165,26 +165,38 @@ TEST(PlyLoader, GenericFacePathMatchesFastPath) {
 // Every scalar type and spelling, for coordinates and for list count/index types, in both byte orders, with extra
 // elements and properties that must be skipped.
 TEST(PlyLoader, EveryScalarTypeBothByteOrders) {
-  struct Type { const char* name; int size; bool is_signed; bool is_float; };
-  const Type kTypes[] = {{"char", 1, true, false},   {"int8", 1, true, false},    {"uchar", 1, false, false},
-                         {"uint8", 1, false, false}, {"short", 2, true, false},   {"int16", 2, true, false},
-                         {"ushort", 2, false, false}, {"uint16", 2, false, false}, {"int", 4, true, false},
-                         {"int32", 4, true, false},  {"uint", 4, false, false},   {"uint32", 4, false, false},
-                         {"float", 4, true, true},   {"float32", 4, true, true},  {"double", 8, true, true},
-                         {"float64", 8, true, true}};
+  struct Type {
+    const char* name;
+    int size;
+    bool is_signed;
+    bool is_float;
+  };
+  const Type kTypes[] = {
+      {"char", 1, true, false},  {"int8", 1, true, false},   {"uchar", 1, false, false},  {"uint8", 1, false, false},
+      {"short", 2, true, false}, {"int16", 2, true, false},  {"ushort", 2, false, false}, {"uint16", 2, false, false},
+      {"int", 4, true, false},   {"int32", 4, true, false},  {"uint", 4, false, false},   {"uint32", 4, false, false},
+      {"float", 4, true, true},  {"float32", 4, true, true}, {"double", 8, true, true},   {"float64", 8, true, true}};
   auto put = [](Bytes& b, const Type& t, double v) {
     if (t.is_float) {
-      if (t.size == 4) b.put(float(v));
-      else b.put(v);
+      if (t.size == 4)
+        b.put(float(v));
+      else
+        b.put(v);
     } else if (t.size == 1) {
-      if (t.is_signed) b.put(int8_t(v));
-      else b.put(uint8_t(v));
+      if (t.is_signed)
+        b.put(int8_t(v));
+      else
+        b.put(uint8_t(v));
     } else if (t.size == 2) {
-      if (t.is_signed) b.put(int16_t(v));
-      else b.put(uint16_t(v));
+      if (t.is_signed)
+        b.put(int16_t(v));
+      else
+        b.put(uint16_t(v));
     } else {
-      if (t.is_signed) b.put(int32_t(v));
-      else b.put(uint32_t(v));
+      if (t.is_signed)
+        b.put(int32_t(v));
+      else
+        b.put(uint32_t(v));
     }
   };
   const double coords[4][3] = {{0, 0, 0}, {3, 0, 0}, {3, 5, 0}, {0, 5, 7}};
@@ -195,9 +207,11 @@ TEST(PlyLoader, EveryScalarTypeBothByteOrders) {
         const Type& index_type = count_type;  // indices in the same integer type as the count
         std::string h = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
                         " 1.0\nelement vertex 4\nproperty " + t.name + " x\nproperty uchar confidence\nproperty " +
-                        t.name + " y\nproperty " + t.name + " z\nproperty float texture_u\nproperty float texture_v\n"
+                        t.name + " y\nproperty " + t.name +
+                        " z\nproperty float texture_u\nproperty float texture_v\n"
                         "element edge 1\nproperty int vertex1\nproperty list uchar int extra\n"
-                        "element face 1\nproperty list " + count_type.name + " " + index_type.name +
+                        "element face 1\nproperty list " +
+                        count_type.name + " " + index_type.name +
                         " vertex_index\nproperty double quality\nend_header\n";
         Bytes b(big);
         for (int i = 0; i < 4; ++i) {
@@ -264,8 +278,9 @@ TEST(PlyLoader, IndexOutOfRangeIsAnErrorOnEveryPath) {
 
   for (bool generic : {false, true}) {
     for (int32_t bad : {5, -1}) {
-      std::string h = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+      std::string h =
+          "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+          "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
       if (generic) h += "property uchar flags\n";
       h += "end_header\n";
       Bytes b(false);
@@ -310,7 +325,8 @@ TEST(PlyLoader, BadHeadersAreErrors) {
       {"ply\nformat ascii 1.0\n" + vertex + "element face 0\nproperty list uchar int corners\nend_header\n",
        "no vertex_indices"},
       {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
-       "property float nx\n" + face + "end_header\n0 0 0 1\n",
+       "property float nx\n" +
+           face + "end_header\n0 0 0 1\n",
        "normals need all of nx, ny, nz"},
   };
   for (const auto& c : cases) {
@@ -325,21 +341,22 @@ TEST(PlyLoader, NonFiniteAndNonNumericValuesAreErrors) {
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   for (const char* bad : {"nan", "inf", "1e999", "abc", "1.5.2"}) {
-    const std::string msg =
-        error_of([&] { parse_ply(head + "0 0 0\n1 " + bad + " 0\n0 1 0\n3 0 1 2\n", "nan.ply"); });
+    const std::string msg = error_of([&] { parse_ply(head + "0 0 0\n1 " + bad + " 0\n0 1 0\n3 0 1 2\n", "nan.ply"); });
     EXPECT_NE(msg.find("line 11"), std::string::npos) << bad << ": " << msg;
   }
   // Binary NaN coordinate.
-  std::string h = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string h =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   Bytes b(false);
   for (int i = 0; i < 9; ++i) b.put(i == 4 ? std::nanf("") : float(i));
   b.put(uint8_t(3)).put(int32_t(0)).put(int32_t(1)).put(int32_t(2));
   const std::string msg = error_of([&] { parse_ply(h + b.str(), "nan.ply"); });
   EXPECT_NE(msg.find("element 'vertex' #1: non-finite position"), std::string::npos) << msg;
   // Integer list index written as a float in ASCII.
-  EXPECT_NE(error_of([&] { parse_ply(head + "0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", "f.ply"); }).find("expected an integer"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { parse_ply(head + "0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", "f.ply"); }).find("expected an integer"),
+      std::string::npos);
 }
 
 TEST(PlyLoader, HugeDeclaredCountsFailBeforeAllocating) {
@@ -350,8 +367,7 @@ TEST(PlyLoader, HugeDeclaredCountsFailBeforeAllocating) {
   const std::string h2 =
       "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
       "property float z\nelement face 9223372036854775807\nproperty list uchar int vertex_indices\nend_header\n";
-  EXPECT_NE(error_of([&] { parse_ply(h2 + std::string(36, '\0'), "huge.ply"); }).find("truncated"),
-            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_ply(h2 + std::string(36, '\0'), "huge.ply"); }).find("truncated"), std::string::npos);
 }
 
 TEST(PlyLoader, MissingFileNamesIt) {
@@ -365,7 +381,8 @@ TEST(PlyLoader, LargeBinaryMeshDecodesFast) {
   const size_t nv = size_t(kN + 1) * (kN + 1), nf = size_t(2) * kN * kN;
   std::string data = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(nv) +
                      "\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\n"
-                     "element face " + std::to_string(nf) + "\nproperty list uchar int vertex_indices\nend_header\n";
+                     "element face " +
+                     std::to_string(nf) + "\nproperty list uchar int vertex_indices\nend_header\n";
   Bytes b(false);
   for (int j = 0; j <= kN; ++j)
     for (int i = 0; i <= kN; ++i) b.put(float(i)).put(float(j)).put(0.0f).put(float(i) / kN).put(float(j) / kN);

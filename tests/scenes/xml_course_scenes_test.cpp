@@ -18,12 +18,12 @@ namespace fs = std::filesystem;
 
 const fs::path kCeng795 = fs::path(KILN_SHARED_DIR) / "scenes" / "ceng795";
 
-#define REQUIRE_SHARED_SCENES()                                                                   \
-  do {                                                                                            \
-    if (!fs::is_directory(kCeng795)) {                                                            \
-      GTEST_SKIP() << "shared CENG795 scenes not found at " << kCeng795.string()                  \
-                   << " (configure with -DKILN_SHARED_DIR=...)";                                  \
-    }                                                                                             \
+#define REQUIRE_SHARED_SCENES()                                                  \
+  do {                                                                           \
+    if (!fs::is_directory(kCeng795)) {                                           \
+      GTEST_SKIP() << "shared CENG795 scenes not found at " << kCeng795.string() \
+                   << " (configure with -DKILN_SHARED_DIR=...)";                 \
+    }                                                                            \
   } while (false)
 
 SceneDesc load(const std::string& rel) { return load_ceng795_xml((kCeng795 / rel).string()); }
@@ -69,20 +69,21 @@ TEST(XmlCourseScenes, EveryFileLoads) {
     // The course files contain no unknown elements; the only oddities are a 5-number NearPlane and a repeated
     // Sphere id (both hw1_2021). Anything else reported is a loader gap.
     for (const auto& w : s.warnings) {
-      if (w.find("NearPlane has 5 numbers") == std::string::npos && w.find("duplicate Sphere id") == std::string::npos) {
+      if (w.find("NearPlane has 5 numbers") == std::string::npos &&
+          w.find("duplicate Sphere id") == std::string::npos) {
         ADD_FAILURE() << "unexpected warning: " << w;
       }
     }
     std::printf("[ info ] %-70s %6.1f ms  meshes %zu spheres %zu instances %zu cameras %zu\n",
-                fs::relative(f, kCeng795).string().c_str(), ms, s.meshes.size(), s.spheres.size(),
-                s.instances.size(), s.cameras.size());
+                fs::relative(f, kCeng795).string().c_str(), ms, s.meshes.size(), s.spheres.size(), s.instances.size(),
+                s.cameras.size());
   }
 }
 
 TEST(XmlCourseScenes, PathTracingFilesHaveEightCamerasWithTheirFlags) {
   REQUIRE_SHARED_SCENES();
-  for (const char* f : {"pathTracing/cornellbox_jaroslav_path_diffuse.xml",
-                        "pathTracing/cornellbox_jaroslav_path_glass.xml"}) {
+  for (const char* f :
+       {"pathTracing/cornellbox_jaroslav_path_diffuse.xml", "pathTracing/cornellbox_jaroslav_path_glass.xml"}) {
     const SceneDesc s = load(f);
     ASSERT_EQ(s.cameras.size(), 8u) << f;
     int nee = 0, is = 0, rr = 0;

@@ -53,6 +53,10 @@ TEST(XmlParseUtil, ErrorsNameFileLineElementAndProblem) {
             "scene.xml: line 10 (Camera id=1 / Position): expected an integer, got '1.5'");
   EXPECT_EQ(error_of([&] { parse_int("", src); }),
             "scene.xml: line 10 (Camera id=1 / Position): expected an integer, got nothing");
+  EXPECT_EQ(error_of([&] { parse_int("99999999999999999999", src); }),
+            "scene.xml: line 10 (Camera id=1 / Position): '99999999999999999999' is out of range");
+  EXPECT_EQ(error_of([&] { parse_int("abc", src); }),
+            "scene.xml: line 10 (Camera id=1 / Position): expected an integer, got 'abc'");
   EXPECT_EQ(error_of([&] { parse_int("99999999999", src); }),
             "scene.xml: line 10 (Camera id=1 / Position): '99999999999' is out of range");
   EXPECT_EQ(error_of([&] { parse_bool("yes", src); }),
@@ -64,7 +68,8 @@ TEST(XmlParseUtil, ErrorsNameFileLineElementAndProblem) {
 TEST(XmlParseUtil, IntegerListsAndLines) {
   const TextSource src{"f.xml", 3, "Faces"};
   EXPECT_EQ(parse_ints(" 1 2 3\n 4 5 6 ", src), (std::vector<int64_t>{1, 2, 3, 4, 5, 6}));
-  EXPECT_EQ(error_of([&] { parse_ints("1 2 3\n4 5.5 6", src); }), "f.xml: line 4 (Faces): expected an integer, got '5.5'");
+  EXPECT_EQ(error_of([&] { parse_ints("1 2 3\n4 5.5 6", src); }),
+            "f.xml: line 4 (Faces): expected an integer, got '5.5'");
   EXPECT_EQ(line_of_offset("a\r\nb\nc", 5), 3);
   EXPECT_EQ(line_of_offset("abc", 0), 1);
 }

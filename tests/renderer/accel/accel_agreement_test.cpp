@@ -249,3 +249,32 @@ TEST(AccelAgreement, EmbreeSharesPaddedBuffersAndCopiesTightOnes) {
 
 }  // namespace
 }  // namespace kiln
+
+namespace kiln {
+namespace {
+
+TEST(AccelAgreement, DegenerateRaysMissWithoutFaults) {
+  WorldGeometry g;
+  add_mesh(g, test::make_icosphere(2));
+  add_sphere(g, Vec3f(3, 0, 0), 1.0f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (AccelKind k : {AccelKind::Embree, AccelKind::Bvh}) {
+    const auto acc = make_accelerator(k, g);
+    Hit h;
+    EXPECT_FALSE(acc->intersect(Ray{Vec3f(0, 0, -5), Vec3f(0, 0, 1), 3.0f, 2.0f}, h)) << "tmin > tmax";
+    EXPECT_FALSE(acc->occluded(Ray{Vec3f(0, 0, -5), Vec3f(0, 0, 1), 3.0f, 2.0f}));
+    EXPECT_FALSE(acc->intersect(Ray{Vec3f(0, 0, -5), Vec3f(0, 0, 0)}, h)) << "zero direction";
+    EXPECT_FALSE(acc->intersect(Ray{Vec3f(nan, 0, -5), Vec3f(0, 0, 1)}, h)) << "NaN origin";
+    EXPECT_FALSE(acc->intersect(Ray{Vec3f(0, 0, -5), Vec3f(0, nan, 1)}, h)) << "NaN direction";
+    EXPECT_FALSE(acc->occluded(Ray{Vec3f(0, 0, -5), Vec3f(0, nan, 1)})) << "NaN direction";
+    EXPECT_FALSE(acc->intersect(Ray{Vec3f(0, 0, -5), Vec3f(0, 0, 1), nan, kInfinity}, h)) << "NaN tmin";
+    EXPECT_FALSE(acc->intersect(Ray{Vec3f(0, 0, -1e30f), Vec3f(0, 0, 1)}, h)) << "beyond Embree's range";
+    // Axis-aligned rays (zero direction components) through the middle still hit.
+    EXPECT_TRUE(acc->intersect(Ray{Vec3f(0, 0, -5), Vec3f(0, 0, 1)}, h));
+    EXPECT_TRUE(acc->intersect(Ray{Vec3f(-5, 0, 0), Vec3f(1, 0, 0)}, h));
+    EXPECT_EQ(h.shape, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace kiln

@@ -63,7 +63,7 @@ TEST(Reintersection, SpawnedRaysDoNotHitTheirOwnSurface) {
         for (int j = 0; j < kSpawnedPerHit; ++j) {
           // Both sides: reflection-like and transmission-like directions.
           const Vec3f w = random_direction(rng);
-          const Ray r{p, w};
+          const Ray r = spawn_ray(p, ng, w);
           Hit h2;
           ++spawned;
           if (!acc->intersect(r, h2) || h2.shape != h.shape) continue;

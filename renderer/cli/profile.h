@@ -1,0 +1,98 @@
+// `kiln profile SCENE|MESH`: where the time and the memory go for one scene. Phases are timed separately
+// (parse, Loop subdivision, world build, accelerator build, render of one camera), rays are counted by kind, the
+// render's thread time is split into ray queries (TSC cycles inside accelerator queries) and the remainder
+// (shading + light/BSDF sampling + camera rays + film + scheduling; the integrators do not time these apart), and
+// memory is the process's peak resident set (VmHWM, reset per phase through /proc/self/clear_refs when the kernel
+// allows; else ru_maxrss) plus the sizes of the big arrays (scene description, world geometry, normals,
+// accelerator). No image is written.
+//
+// CLI11 lines for renderer/main.cpp (the lead's file):
+//
+//   ProfileArgs pa;
+//   std::string profile_accel = "embree";
+//   auto* profile = app.add_subcommand("profile", "Time and measure the phases of a render (parse, subdivision, "
+//                                                 "build, render), rays per second and peak memory");
+//   profile->add_option("scene", pa.scene, "Scene file (.xml, .json) or bare mesh (.ply, .obj)")->required();
+//   profile->add_option("--subdivide", pa.subdivide, "Loop-subdivide every mesh this many times (default: the "
+//                                                   "scene's own setting)");
+//   profile->add_option("--accel", profile_accel, "Ray-query backend: embree or bvh")
+//       ->check(CLI::IsMember({"embree", "bvh"}))->capture_default_str();
+//   profile->add_option("--spp", pa.spp, "Samples per pixel for the timed render")->check(CLI::PositiveNumber)
+//       ->capture_default_str();
+//   profile->add_option("--camera", pa.camera, "Profile the camera with this id (default: the first)");
+//   profile->add_option("--threads", pa.threads, "Worker threads (0: all cores)")->capture_default_str();
+//   profile->add_option("--seed", pa.seed, "Random seed")->capture_default_str();
+//   profile->add_flag("--no-render", pa.no_render, "Stop after building the accelerator");
+//   profile->add_flag("--json", pa.json, "Print the measurements as JSON instead of a table");
+//   ...
+//   pa.accel = profile_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
+//   if (*profile) return run_guarded([&] { return cmd_profile(pa); });
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "renderer/accel/accelerator.h"
+
+namespace kiln {
+
+struct ProfileArgs {
+  std::string scene;
+  int subdivide = -1;  // < 0: each mesh's own setting
+  AccelKind accel = AccelKind::Embree;
+  uint32_t spp = 4;    // the timed render's samples per pixel
+  std::optional<std::string> camera;
+  int threads = 0;     // 0: all cores
+  uint64_t seed = 0;
+  bool no_render = false;
+  bool json = false;
+};
+
+struct RayKindStats {
+  uint64_t count = 0;
+  double mrays_per_second = 0;  // per wall-clock second of the render phase
+};
+
+struct ProfileReport {
+  std::string scene;
+  int subdivide = -1;
+  std::string accel;
+  int threads = 0;
+  size_t meshes = 0, triangles = 0;  // as rendered (instanced triangles once per instance)
+  // Phases, wall-clock seconds.
+  double parse_seconds = 0, subdivision_seconds = 0, world_build_seconds = 0, accel_build_seconds = 0;
+  double render_seconds = 0, total_seconds = 0;
+  double load_subdivision_build_seconds() const {
+    return parse_seconds + subdivision_seconds + world_build_seconds + accel_build_seconds;
+  }
+  // Render.
+  bool rendered = false;
+  std::string camera;
+  int width = 0, height = 0;
+  uint32_t spp = 0;
+  RayKindStats primary, shadow, indirect, total;
+  double ray_query_share = 0;  // of the render's thread time (render_seconds x threads)
+  // Memory (bytes). Peaks are per phase when peak_reset_supported, else the process peak so far.
+  size_t baseline_rss = 0, peak_rss = 0;
+  size_t parse_peak_rss = 0, subdivision_peak_rss = 0, build_peak_rss = 0, render_peak_rss = 0;
+  bool peak_reset_supported = false;
+  std::string peak_source;  // "VmHWM" or "ru_maxrss"
+  size_t scene_desc_bytes = 0;       // MeshDesc positions/indices/normals/uvs (kept alive during the render)
+  size_t world_geometry_bytes = 0;   // WorldGeometry meshes and prototypes
+  size_t world_normals_bytes = 0;    // World::normals
+  size_t accel_bytes = 0;            // as the accelerator reports it
+  double bytes_per_triangle() const { return triangles ? double(peak_rss) / double(triangles) : 0.0; }
+  double net_bytes_per_triangle() const {
+    return triangles ? double(peak_rss > baseline_rss ? peak_rss - baseline_rss : 0) / double(triangles) : 0.0;
+  }
+};
+
+// Runs the phases and measures them; throws kiln::Error on bad input.
+ProfileReport run_profile(const ProfileArgs& args);
+std::string profile_json(const ProfileReport& report);   // pretty-printed JSON object
+std::string profile_table(const ProfileReport& report);  // human-readable table
+// run_profile, then prints the table (or the JSON with args.json) to stdout; returns the exit code.
+int cmd_profile(const ProfileArgs& args);
+
+}  // namespace kiln

@@ -1,0 +1,154 @@
+// End-to-end CLI behaviour: bad input exits with code 2, names the file and the problem, and leaves no output
+// file; good input writes EXR + PNG + stats.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "render_util.h"
+
+namespace kiln::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  // stdout + stderr
+};
+
+RunResult run_kiln(const std::string& args) {
+  const std::string cmd = std::string(KILN_BINARY) + " " + args + " 2>&1";
+  RunResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), int(buf.size()), p)) r.output += buf.data();
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
+  const std::string path = dir + "/" + name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// A minimal valid CENG795 scene; tests corrupt one piece of it.
+std::string scene_text(const std::string& vertices = "0 0 -2\n1 0 -2\n0 1 -2\n", const std::string& faces = "1 2 3",
+                       const std::string& material_ref = "1", const std::string& radius = "0.5") {
+  return R"(<Scene>
+  <BackgroundColor>0 0 0</BackgroundColor>
+  <Cameras><Camera id="1"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>
+    <NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance><ImageResolution>8 8</ImageResolution>
+    <ImageName>bad.png</ImageName></Camera></Cameras>
+  <Lights><AmbientLight>10 10 10</AmbientLight><PointLight id="1"><Position>0 0 0</Position>
+    <Intensity>100 100 100</Intensity></PointLight></Lights>
+  <Materials><Material id="1"><AmbientReflectance>1 1 1</AmbientReflectance>
+    <DiffuseReflectance>1 1 1</DiffuseReflectance><SpecularReflectance>0 0 0</SpecularReflectance>
+    <PhongExponent>1</PhongExponent></Material></Materials>
+  <VertexData>)" + vertices + R"(</VertexData>
+  <Objects>
+    <Mesh id="1"><Material>)" + material_ref + R"(</Material><Faces>)" + faces + R"(</Faces></Mesh>
+    <Sphere id="1"><Material>1</Material><Center>1</Center><Radius>)" + radius + R"(</Radius></Sphere>
+  </Objects>
+</Scene>
+)";
+}
+
+class CliBadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = tmp_dir(std::string("cli_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    out_ = dir_ + "/out";
+    fs::remove_all(out_);
+  }
+  // Runs `kiln render path` and checks the failure contract.
+  void expect_bad_input(const std::string& path, const std::string& must_mention) {
+    const RunResult r = run_kiln("render " + path + " -o " + out_ + " -q");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(fs::path(path).filename().string()), std::string::npos) << "message must name the file: " << r.output;
+    EXPECT_NE(r.output.find(must_mention), std::string::npos) << "message must say '" << must_mention << "': " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one-line error expected: " << r.output;
+    EXPECT_TRUE(!fs::exists(out_) || fs::is_empty(out_)) << "no output file may be left behind";
+  }
+  std::string dir_, out_;
+};
+
+TEST_F(CliBadInput, MissingFile) { expect_bad_input(dir_ + "/does_not_exist.xml", "not found"); }
+
+TEST_F(CliBadInput, MalformedXmlReportsLine) {
+  std::string text = scene_text();
+  text.replace(text.find("</Materials>"), 12, "</Material>");
+  expect_bad_input(write_file(dir_, "malformed.xml", text), "line");
+}
+
+TEST_F(CliBadInput, DanglingMaterialId) {
+  expect_bad_input(write_file(dir_, "dangling.xml", scene_text("0 0 -2\n1 0 -2\n0 1 -2\n", "1 2 3", "7")), "7");
+}
+
+TEST_F(CliBadInput, VertexIndexOutOfRange) {
+  expect_bad_input(write_file(dir_, "range.xml", scene_text("0 0 -2\n1 0 -2\n0 1 -2\n", "1 2 9")), "9");
+}
+
+TEST_F(CliBadInput, NonNumericNumber) {
+  expect_bad_input(write_file(dir_, "nonnumeric.xml", scene_text("0 0 -2\n1 abc -2\n0 1 -2\n")), "abc");
+}
+
+TEST_F(CliBadInput, NonFiniteNumber) {
+  expect_bad_input(write_file(dir_, "nonfinite.xml", scene_text("0 0 -2\n1 0 -2\n0 1 -2\n", "1 2 3", "1", "1e999")),
+                   "1e999");
+}
+
+TEST_F(CliBadInput, TruncatedPly) {
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string body(20, '\0');  // 36 bytes of vertices are needed
+  expect_bad_input(write_file(dir_, "truncated.ply", header + body), "truncated.ply");
+}
+
+TEST_F(CliBadInput, UnknownExtension) { expect_bad_input(write_file(dir_, "scene.txt", "hello"), "unknown scene format"); }
+
+TEST_F(CliBadInput, BadOption) {
+  const RunResult r = run_kiln("render " + dir_ + "/x.xml --spp -3");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
+TEST(Cli, RenderWritesExrPngAndStats) {
+  const std::string dir = tmp_dir("cli_good");
+  const std::string scene = write_file(dir, "good.xml", scene_text());
+  const std::string stats = dir + "/stats.json";
+  const RunResult r = run_kiln("render " + scene + " -o " + dir + "/out -q --stats " + stats);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir + "/out/bad.exr"));
+  EXPECT_TRUE(fs::exists(dir + "/out/bad.png"));
+  std::ifstream f(stats);
+  const auto j = nlohmann::json::parse(f);
+  EXPECT_EQ(j["world"]["spheres"], 1);
+  EXPECT_EQ(j["world"]["built"]["sphere_geometry"], true);
+  EXPECT_EQ(j["world"]["built"]["cone_sampler"], false);
+  EXPECT_EQ(j["cameras"][0]["rays"]["primary"], 64);
+  // Nothing temporary left next to the outputs.
+  for (const auto& e : fs::directory_iterator(dir + "/out"))
+    EXPECT_EQ(e.path().filename().string().rfind(".", 0), std::string::npos) << e.path();
+}
+
+TEST(Cli, InfoSucceedsOnEveryCourseScene) {
+  if (!have_shared()) GTEST_SKIP() << "KILN_SHARED_DIR (" << shared_dir() << ") has no scenes/ceng795";
+  size_t n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(shared_dir() + "/scenes/ceng795")) {
+    if (e.path().extension() != ".xml") continue;
+    const RunResult r = run_kiln("info " + e.path().string());
+    EXPECT_EQ(r.exit_code, 0) << e.path() << "\n" << r.output;
+    ++n;
+  }
+  EXPECT_GT(n, 40u);
+}
+
+}  // namespace
+}  // namespace kiln::test
