@@ -168,7 +168,8 @@ std::optional<LightSample> SphereLight::sample_li(const LightQuery& q, Vec2f u) 
   const double d = length(to_light);
   if (!(d > 0.0) || !std::isfinite(d)) return std::nullopt;
   const D3 wi = to_light * (1.0 / d);
-  const double pdf = solid_angle_scale(wi.arr()) / (2.0 * kPiD * one_minus_cos_max);
+  const double scale = course_pdf_ ? 1.0 : solid_angle_scale(wi.arr());
+  const double pdf = scale / (2.0 * kPiD * one_minus_cos_max);
   if (!(pdf > 0.0) || !std::isfinite(pdf)) return std::nullopt;
 
   LightSample smp;
@@ -235,7 +236,7 @@ float SphereLight::pdf_li(const LightQuery& q, Vec3f p_light, Vec3f, uint32_t) c
   if (dot(perp, perp) > r * r * (1.0 + kSilhouetteTolerance)) return 0.0f;
   const double sin2_max = r * r / l.dist2;
   const double one_minus_cos_max = sin2_max / (1.0 + std::sqrt(1.0 - sin2_max));
-  return float(solid_angle_scale(wi.arr()) / (2.0 * kPiD * one_minus_cos_max));
+  return float((course_pdf_ ? 1.0 : solid_angle_scale(wi.arr())) / (2.0 * kPiD * one_minus_cos_max));
 }
 
 }  // namespace kiln

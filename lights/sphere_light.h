@@ -32,6 +32,9 @@ class SphereLight {
   // pi * area * lum(L) for an outward Lambertian emitter.
   float power() const { return kPi * surface_area_ * radiance_.luminance(); }
   static constexpr bool kDelta = false;
+  // The CENG795 course renderer divides ellipsoid-light samples by the OBJECT-space cone pdf (spec §14.13), which
+  // is biased under non-uniform scale; its reference images need that convention. Off by default (exact density).
+  void set_course_object_space_pdf(bool on) { course_pdf_ = on; }
 
   // Exact for spheres (including uniformly scaled ones); Knud Thomsen's approximation (error < ~1.1%) for
   // ellipsoids.
@@ -52,6 +55,7 @@ class SphereLight {
   Affine to_world_{}, to_object_{};
   double abs_det_ = 1.0;
   float surface_area_ = 0.0f;
+  bool course_pdf_ = false;
 };
 
 }  // namespace kiln

@@ -58,7 +58,7 @@ std::optional<DirectionSample> sample_direction(const IntegratorSettings& s, con
 }  // namespace
 
 Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ray, Rng& rng, RayCounters& c) {
-  Rgb L(0.0f), beta(1.0f);
+  Rgb L(0.0f), beta(1.0f), potential(1.0f);
   Ray ray = camera_ray;
   bool specular_bounce = true;  // the camera ray counts as one: emitters seen directly are always counted
   float prev_pdf = 0.0f;
@@ -74,6 +74,17 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
     }
     SurfaceInteraction si = make_interaction(w, ray, hit);
     const Vec3f wo = -ray.d;
+    // Course roulette (spec §11, README "Course path-tracing semantics"): decided on arrival at a vertex from the
+    // path's "potential" (product of surface reflectances); a surviving path divides everything it gathers from
+    // here on, including this vertex's own emission and NEE, by the survival probability, while a terminated
+    // path still keeps this vertex's direct light. That over-weights direct light by (2 - p) and is what makes
+    // the course's RussianRoulette references 25-50% brighter; Kiln's own roulette (below) is unbiased.
+    bool course_stop = false;
+    if (s.course_roulette && depth > 0) {
+      const float survive = std::min(1.0f, potential.max_component());
+      if (rng.next_float() >= survive) course_stop = true;
+      else beta *= 1.0f / survive;
+    }
     if (si.light >= 0) {
       const Light& light = w.lights[size_t(si.light)];
       const Rgb le = emitted(light, si.ng, wo);
@@ -89,7 +100,7 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
     if (!si.material) break;
     // Kiln: max_depth bounces, so the last vertex only collects emission. The course's recursion also runs
     // NEE there (one more bounce of light for NEE paths than for pure path tracing; README).
-    const bool last_vertex = depth >= max_depth;
+    const bool last_vertex = depth >= max_depth || course_stop;
     if (last_vertex && !(s.nee_at_last_vertex && use_nee)) break;
     const Material& m = *si.material;
     if (exits_dielectric(si, ray.d)) beta *= m.transmittance(hit.t * length(ray.d));
@@ -121,12 +132,14 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
     const Vec3f wi = frame.to_world(ds->wi_local);
     if (!ds->transmission && !valid_reflection_side(si, wo, wi)) break;
     beta *= ds->f * (abs_cos_theta(ds->wi_local) / ds->pdf);
+    // Reflectance of the bounce: kd for the diffuse lobes (f * pi), the path weight for delta bounces.
+    potential *= ds->specular ? ds->f * (abs_cos_theta(ds->wi_local) / ds->pdf) : ds->f * kPi;
     if (beta.is_black() || !beta.is_finite()) break;
     specular_bounce = ds->specular;
     prev_pdf = ds->pdf;
     prev = LightQuery{si.p, si.ns};
 
-    if (s.russian_roulette && depth >= s.rr_min_depth) {
+    if (s.russian_roulette && !s.course_roulette && depth >= s.rr_min_depth) {
       // Survival probability from the throughput; dividing by it keeps the estimator unbiased.
       const float survive = std::min(1.0f, beta.max_component());
       if (rng.next_float() >= survive) break;

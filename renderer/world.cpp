@@ -32,7 +32,9 @@ std::vector<Vec3f> vertex_normals(const TriangleMesh& m) {
   return n;
 }
 
-void check_material(const SceneDesc& scene, int material, const std::string& name) {
+// Emitters may come without a material (they only emit); everything else needs one.
+void check_material(const SceneDesc& scene, int material, const std::string& name, bool emits) {
+  if (material < 0 && emits) return;
   if (material < 0 || size_t(material) >= scene.materials.size())
     throw Error(scene.source_path, name, "has no valid material");
 }
@@ -67,6 +69,7 @@ std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& o
   w.stats.materials = w.materials.size();
   if (!w.ambient.is_black()) w.features |= kFeatureAmbient;
 
+  const bool course = options.course_conventions.value_or(scene.format == "ceng795-xml");
   WorldGeometry& g = w.geometry;
   // Meshes: world-space copies for the scene, object-space prototypes for instanced bases.
   std::vector<int> prototype_of(scene.meshes.size(), -1);
@@ -77,7 +80,7 @@ std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& o
       g.prototypes.push_back(TriangleMesh{m.positions, m.indices});
     }
     if (!m.visible || m.indices.empty()) continue;
-    check_material(scene, m.material, m.name);
+    check_material(scene, m.material, m.name, m.emission.has_value());
     TriangleMesh tm{transformed_points(m.positions, m.to_world), m.indices};
     ShapeData sd;
     sd.material = m.material;
@@ -110,12 +113,14 @@ std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& o
     w.features |= kFeatureTriangles;
   }
   for (const SphereDesc& s : scene.spheres) {
-    check_material(scene, s.material, s.name);
+    check_material(scene, s.material, s.name, s.emission.has_value());
     ShapeData sd;
     sd.material = s.material;
     if (s.emission && !s.emission->is_black()) {
       sd.light = int(w.lights.size());
-      w.lights.emplace_back(SphereLight(s.center, s.radius, s.to_world, *s.emission));
+      SphereLight light(s.center, s.radius, s.to_world, *s.emission);
+      light.set_course_object_space_pdf(course);
+      w.lights.emplace_back(light);
       ++w.stats.sphere_lights;
       w.features |= kFeatureSphereLights;
       w.stats.cone_sampler_built = true;
@@ -136,7 +141,7 @@ std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& o
     const int proto = prototype_of[size_t(inst.base_mesh)];
     ShapeData sd;
     sd.material = inst.material >= 0 ? inst.material : base.material;
-    check_material(scene, sd.material, inst.name);
+    check_material(scene, sd.material, inst.name, false);
     sd.smooth = inst.smooth.value_or(base.smooth || !base.normals.empty());
     if (sd.smooth) {
       int& pn = prototype_normals[size_t(proto)];

@@ -53,7 +53,10 @@ struct World {
 struct WorldOptions {
   AccelKind accel = AccelKind::Embree;
   LightSelection light_selection = LightSelection::PowerProportional;
-  bool build_accelerator = true;  // kiln info only needs the description and the feature mask
+  bool build_accelerator = true;
+  // CENG795 reference conventions that differ from the exact estimators (README, "Course conventions"): ellipsoid
+  // lights divided by the object-space cone pdf. Empty: on for CENG795 XML scenes only.
+  std::optional<bool> course_conventions;  // kiln info only needs the description and the feature mask
 };
 
 // Throws kiln::Error on inconsistent descriptions (dangling material indices etc.).

@@ -1,20 +1,25 @@
 // Loop subdivision (Loop 1987 with Warren's beta, the rules of pbrt's loopsubdiv):
-//  - every triangle splits into four around one new vertex per edge: V' = V + E, T' = 4 T, winding kept;
+//  - every triangle splits into four around one new vertex per edge: V' = V + E, T' = 4 T, winding kept; old
+//    vertices keep their indices, so a mesh subdivided n levels starts with the vertices of every coarser level;
 //  - interior edge (two faces): 3/8 (a + b) + 1/8 (c + d), c and d the vertices opposite the edge;
 //  - interior vertex of valence n: (1 - n beta) v + beta * sum(ring), beta = 3/16 for n = 3, else 3/(8n);
 //  - crease edges, i.e. boundary edges (one face) and non-manifold edges (more than two faces): the midpoint;
 //    a vertex on exactly two crease edges follows the curve rule 1/8, 6/8, 1/8 along them; a vertex on one or on
 //    more than two crease edges is a corner and stays put.
-// After the last level every vertex gets the exact limit-surface normal from Loop's tangent masks (for boundary
-// vertices the exact eigenvector of these rules, see across_mask), oriented like the adjacent faces; where the one-ring is not a single fan (non-
-// manifold, inconsistent winding, degenerate triangles) the area-weighted face normal is used instead. Positions
-// are the last level's control points (not projected onto the limit surface). Per-vertex uvs are carried linearly
-// (edge vertices take the edge midpoint's uv); input normals are replaced by the limit normals.
+// The last level also yields every vertex's exact limit-surface normal from Loop's tangent masks (interior: the
+// ring's first Fourier modes; boundary: the along-curve tangent and the exact across eigenvector of these rules,
+// see across_mask), oriented like the adjacent faces. Where the one-ring is not a single fan (non-manifold,
+// inconsistent winding, degenerate triangles) the area-weighted face normal is used instead. Positions are the
+// last level's control points (not projected onto the limit surface). Per-vertex uvs are carried linearly (edge
+// vertices take the edge midpoint's uv); input normals are replaced by the limit normals and smooth is set.
 //
-// Speed and memory: flat arrays only. Per level, one counting sort of the half-edges by endpoint (each half-edge
-// listed under both endpoints as (other endpoint << 32 | half-edge), sorted per vertex) gives, per vertex, its
-// edges with their face counts; vertex rule, edge points and new triangles are then independent TBB loops over
-// vertices or triangles. Every result is independent of the thread count (per-vertex lists are sorted).
+// Speed and memory: flat arrays only, no per-vertex allocation. Per level, one counting sort of the half-edges by
+// endpoint (each half-edge listed under both endpoints as (other endpoint << 32 | half-edge), sorted per vertex)
+// gives every vertex its edges with their face counts; vertex points, edge points, new triangles and (last level)
+// normals are then TBB loops over vertices or triangles. The limit normal does not depend on the level, so the
+// last level's normals come from the coarse level's adjacency (old vertices: coarse ring; new edge vertices: their
+// fine ring, known from the two coarse triangles), and the fine mesh needs no adjacency of its own. Results do
+// not depend on the thread count (per-vertex lists are sorted).
 #include "scenes/subdivision.h"
 
 #include <tbb/blocked_range.h>

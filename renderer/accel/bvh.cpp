@@ -160,27 +160,42 @@ inline int intersect_tri4(const Tri4& p, const TravRay& r, float tmax, float* t_
 }
 
 // Collapses the binary tree into Node4s (pre-order, so a node's children follow it) and lays leaf primitives out
-// as Tri4 packets in the same order.
+// as Tri4 packets in the same order. Nodes are made in one sequential pass; packets, whose vertex gathers are
+// the expensive part, are only numbered there and filled in parallel afterwards.
 class Collapser {
  public:
   Collapser(const BvhBuildResult& bin, Tree& out) : bin_(bin), out_(out) {}
   template <typename VertexOf>
   void run(VertexOf& vertex_of) {
-    out_.root = bin_.nodes[kBvhRoot].is_leaf() ? leaf_ref(kBvhRoot, vertex_of) : interior(kBvhRoot, vertex_of);
+    out_.root = bin_.nodes[kBvhRoot].is_leaf() ? leaf_ref(kBvhRoot) : interior(kBvhRoot);
+    out_.packets.resize(packet_count_);
+    tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t l) { fill_packets(leaves_[l], vertex_of); });
   }
 
  private:
+  struct PendingLeaf {
+    uint32_t bin_node, first_packet;
+  };
   const BvhBuildResult& bin_;
   Tree& out_;
+  uint32_t packet_count_ = 0;
+  std::vector<PendingLeaf> leaves_;
 
-  template <typename VertexOf>
-  ChildRef leaf_ref(uint32_t bin_node, VertexOf& vertex_of) {
+  ChildRef leaf_ref(uint32_t bin_node) {
     const BvhNode& n = bin_.nodes[bin_node];
     if (n.count == 0) return kEmptyChild;
     if (ref_kind(out_.refs[n.offset]) != kKindTriangle) return make_leaf_ref(true, n.offset, n.count);
-    const uint32_t first = uint32_t(out_.packets.size());
+    const uint32_t first = packet_count_, count = (n.count + kWidth - 1) / kWidth;
+    packet_count_ += count;
+    leaves_.push_back({bin_node, first});
+    return make_leaf_ref(false, first, count);
+  }
+
+  template <typename VertexOf>
+  void fill_packets(const PendingLeaf& leaf, VertexOf& vertex_of) const {
+    const BvhNode& n = bin_.nodes[leaf.bin_node];
     for (uint32_t i = 0; i < n.count; i += kWidth) {
-      Tri4 p;
+      Tri4& p = out_.packets[leaf.first_packet + i / kWidth];
       for (int lane = 0; lane < kWidth; ++lane) {
         const bool used = i + uint32_t(lane) < n.count;
         const uint32_t slot = n.offset + i + uint32_t(lane);
@@ -190,13 +205,10 @@ class Collapser {
           for (int a = 0; a < 3; ++a) p.v[k][a][lane] = v[a];
         }
       }
-      out_.packets.push_back(p);
     }
-    return make_leaf_ref(false, first, (n.count + kWidth - 1) / kWidth);
   }
 
-  template <typename VertexOf>
-  ChildRef interior(uint32_t bin_node, VertexOf& vertex_of) {
+  ChildRef interior(uint32_t bin_node) {
     // Open up to four children, always expanding the largest interior one (the likeliest to be visited).
     uint32_t kids[kWidth] = {bin_.nodes[bin_node].offset, bin_.nodes[bin_node].offset + 1, 0, 0};
     int n = 2;
@@ -226,8 +238,8 @@ class Collapser {
         node.b[2 * a + 1][i] = b.hi[a];
       }
       node.child[i] = !used                               ? kEmptyChild
-                      : bin_.nodes[kids[i]].is_leaf() ? leaf_ref(kids[i], vertex_of)
-                                                      : interior(kids[i], vertex_of);
+                      : bin_.nodes[kids[i]].is_leaf() ? leaf_ref(kids[i])
+                                                      : interior(kids[i]);
     }
     out_.nodes[index] = node;
     return index;
@@ -263,11 +275,12 @@ struct Bvh::Impl {
     t.binary_stats = bvh_tree_stats(built.nodes, options.build);
     if (built.order.empty()) return t;
     t.refs.resize(built.order.size());
-    for (size_t i = 0; i < built.order.size(); ++i) t.refs[i] = refs[built.order[i]];
+    tbb::parallel_for(size_t(0), built.order.size(), [&](size_t i) { t.refs[i] = refs[built.order[i]]; });
+    // The node count is bounded by the binary interior nodes, and trimmed after collapsing.
     t.nodes.reserve(built.nodes.size() / 2 + 1);
-    t.packets.reserve(built.order.size() / 2 + 1);
     auto vertex_of = [&](PrimRef r, int k) { return mesh_of(r).vertex(ref_index(r), k); };
     Collapser(built, t).run(vertex_of);
+    t.nodes.shrink_to_fit();
     return t;
   }
 

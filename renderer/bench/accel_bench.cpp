@@ -120,16 +120,20 @@ template <bool kBvh>
 void BM_AccelBuild(benchmark::State& state) {
   const Fixture& f = fixture(int(state.range(0)));
   double seconds = 0;
+  size_t bytes = 0;
   const double cpu0 = process_cpu_seconds();
   for (auto _ : state) {
     if constexpr (kBvh) {
       const Bvh acc(f.g);
       seconds += acc.stats().build_seconds;
+      bytes = acc.stats().bytes;
     } else {
       const EmbreeAccel acc(f.g);
       seconds += acc.stats().build_seconds;
+      bytes = acc.stats().bytes;
     }
   }
+  state.counters["MB"] = double(bytes) * 1e-6;
   const double tris = double(f.g.meshes[0].triangle_count());
   state.counters["triangles"] = tris;
   state.counters["Mtris/s"] = tris * double(state.iterations()) / seconds * 1e-6;

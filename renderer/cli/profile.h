@@ -66,6 +66,10 @@ struct ProfileReport {
   double load_subdivision_build_seconds() const {
     return parse_seconds + subdivision_seconds + world_build_seconds + accel_build_seconds;
   }
+  // Process CPU seconds (all threads) per phase: robust to other processes on a shared machine, where wall
+  // times stretch. The accelerator is built inside the world build, so their CPU time is one figure.
+  double parse_cpu_seconds = 0, subdivision_cpu_seconds = 0, build_cpu_seconds = 0, render_cpu_seconds = 0;
+  double load_average = 0;  // 1-minute load average of the machine when the profile started (/proc/loadavg)
   // Render.
   bool rendered = false;
   std::string camera;

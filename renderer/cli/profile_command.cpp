@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +27,19 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+double process_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+double load_average() {
+  std::ifstream f("/proc/loadavg");
+  double l = 0;
+  f >> l;
+  return l;
+}
 
 constexpr size_t kKiB = 1024;
 constexpr double kMiB = 1024.0 * 1024.0;
@@ -141,14 +155,23 @@ ProfileReport run_profile(const ProfileArgs& args) {
     return p;
   };
 
+  r.load_average = load_average();
   auto t = Clock::now();
+  double cpu = process_cpu_seconds();
+  auto cpu_since = [&cpu] {
+    const double now = process_cpu_seconds(), d = now - cpu;
+    cpu = now;
+    return d;
+  };
   SceneDesc scene = load_unsubdivided(args);
   r.parse_seconds = seconds_since(t);
+  r.parse_cpu_seconds = cpu_since();
   r.parse_peak_rss = phase_peak();
 
   t = Clock::now();
   apply_subdivision(scene);
   r.subdivision_seconds = seconds_since(t);
+  r.subdivision_cpu_seconds = cpu_since();
   r.subdivision_peak_rss = phase_peak();
 
   t = Clock::now();
@@ -156,6 +179,7 @@ ProfileReport run_profile(const ProfileArgs& args) {
   wo.accel = args.accel;
   const auto world = build_world(scene, wo);
   const double build_seconds = seconds_since(t);
+  r.build_cpu_seconds = cpu_since();
   const AccelStats as = world->accel->stats();
   r.accel = as.name;
   r.accel_build_seconds = as.build_seconds;
@@ -184,7 +208,9 @@ ProfileReport run_profile(const ProfileArgs& args) {
     ro.seed = args.seed;
     ro.spp_total = std::max(1u, args.spp);
     Film film(camera.width(), camera.height());
+    cpu_since();
     const RenderStats rs = render_samples(*world, camera, settings, ro, 0, ro.spp_total, film);
+    r.render_cpu_seconds = cpu_since();
     r.rendered = true;
     r.camera = cd->id;
     r.width = camera.width();
@@ -219,6 +245,11 @@ std::string profile_json(const ProfileReport& r) {
                  {"load_subdivision_build_seconds", r.load_subdivision_build_seconds()},
                  {"render_seconds", r.render_seconds},
                  {"total_seconds", r.total_seconds}};
+  j["cpu_seconds"] = {{"parse", r.parse_cpu_seconds},
+                      {"subdivision", r.subdivision_cpu_seconds},
+                      {"world_and_accel_build", r.build_cpu_seconds},
+                      {"render", r.render_cpu_seconds}};
+  j["load_average"] = r.load_average;
   if (r.rendered) {
     j["render"] = {{"camera", r.camera}, {"width", r.width}, {"height", r.height}, {"spp", r.spp}};
     j["rays"] = {{"primary", kind(r.primary)}, {"shadow", kind(r.shadow)}, {"indirect", kind(r.indirect)},
@@ -256,18 +287,20 @@ std::string profile_table(const ProfileReport& r) {
   const double tri = double(std::max<size_t>(1, r.triangles));
   auto mib = [](size_t b) { return double(b) / kMiB; };
   add("kiln profile: %s\n", r.scene.c_str());
-  add("  subdivide %s, accelerator %s, %d threads, %zu meshes, %zu triangles\n",
+  add("  subdivide %s, accelerator %s, %d threads, %zu meshes, %zu triangles (machine load %.1f)\n",
       r.subdivide >= 0 ? std::to_string(r.subdivide).c_str() : "as in scene", r.accel.c_str(), r.threads, r.meshes,
-      r.triangles);
-  add("\n  %-26s %10s\n", "phase", "seconds");
-  add("  %-26s %10.3f\n", "parse", r.parse_seconds);
-  add("  %-26s %10.3f\n", "subdivision", r.subdivision_seconds);
-  add("  %-26s %10.3f\n", "world build", r.world_build_seconds);
-  add("  %-26s %10.3f\n", "accelerator build", r.accel_build_seconds);
-  add("  %-26s %10.3f\n", "load+subdivision+build", r.load_subdivision_build_seconds());
+      r.triangles, r.load_average);
+  add("\n  %-26s %10s %10s\n", "phase", "seconds", "cpu s");
+  add("  %-26s %10.3f %10.3f\n", "parse", r.parse_seconds, r.parse_cpu_seconds);
+  add("  %-26s %10.3f %10.3f\n", "subdivision", r.subdivision_seconds, r.subdivision_cpu_seconds);
+  add("  %-26s %10.3f %10s\n", "world build", r.world_build_seconds, "(below)");
+  add("  %-26s %10.3f %10.3f   (cpu: world + accelerator)\n", "accelerator build", r.accel_build_seconds,
+      r.build_cpu_seconds);
+  add("  %-26s %10.3f %10.3f\n", "load+subdivision+build", r.load_subdivision_build_seconds(),
+      r.parse_cpu_seconds + r.subdivision_cpu_seconds + r.build_cpu_seconds);
   if (r.rendered) {
-    add("  %-26s %10.3f   (camera %s, %dx%d, %u spp)\n", "render", r.render_seconds, r.camera.c_str(), r.width,
-        r.height, r.spp);
+    add("  %-26s %10.3f %10.3f   (camera %s, %dx%d, %u spp)\n", "render", r.render_seconds, r.render_cpu_seconds,
+        r.camera.c_str(), r.width, r.height, r.spp);
     add("\n  %-26s %14s %10s\n", "rays", "count", "Mrays/s");
     for (const auto& [name, k] : {std::pair{"primary", r.primary}, std::pair{"shadow", r.shadow},
                                   std::pair{"indirect", r.indirect}, std::pair{"total", r.total}})

@@ -54,6 +54,7 @@ TEST(Profile, ReportIsConsistent) {
   for (double s : {r.parse_seconds, r.subdivision_seconds, r.world_build_seconds, r.accel_build_seconds, r.render_seconds})
     EXPECT_GE(s, 0.0);
   EXPECT_GE(r.total_seconds, r.load_subdivision_build_seconds());
+  EXPECT_GT(r.render_cpu_seconds, 0.0);
   EXPECT_GT(r.peak_rss, 0u);
   EXPECT_GE(r.peak_rss, r.build_peak_rss);
   EXPECT_GT(r.bytes_per_triangle(), 0.0);
@@ -71,12 +72,14 @@ TEST(Profile, JsonHasEveryKey) {
   const std::string out = testing::internal::GetCapturedStdout();
   ASSERT_EQ(code, 0);
   const nlohmann::json j = nlohmann::json::parse(out);
-  for (const char* k : {"scene", "subdivide", "accel", "threads", "meshes", "triangles", "phases", "render", "rays",
-                        "time_share", "memory"})
+  for (const char* k : {"scene", "subdivide", "accel", "threads", "meshes", "triangles", "phases", "cpu_seconds",
+                        "load_average", "render", "rays", "time_share", "memory"})
     EXPECT_TRUE(j.contains(k)) << k;
   for (const char* k : {"parse_seconds", "subdivision_seconds", "world_build_seconds", "accel_build_seconds",
                         "load_subdivision_build_seconds", "render_seconds", "total_seconds"})
     EXPECT_TRUE(j["phases"][k].is_number()) << k;
+  for (const char* k : {"parse", "subdivision", "world_and_accel_build", "render"})
+    EXPECT_GE(j["cpu_seconds"][k].get<double>(), 0.0) << k;
   for (const char* kind : {"primary", "shadow", "indirect", "total"}) {
     EXPECT_TRUE(j["rays"][kind]["count"].is_number_unsigned()) << kind;
     EXPECT_TRUE(j["rays"][kind]["mrays_per_second"].is_number()) << kind;

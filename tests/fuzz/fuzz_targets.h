@@ -1,0 +1,155 @@
+// What each loader harness does with one input, shared by the libFuzzer harnesses (tests/fuzz/fuzz_*.cpp) and by
+// the regression test that replays the corpora and the saved crashes in the normal suite
+// (tests/scenes/fuzz_regression_test.cpp), so both exercise exactly the same code.
+//
+// The contract under test: a loader either returns or throws kiln::Error. Any other exception escapes (and aborts
+// the fuzzer as an uncaught exception); crashes, leaks and sanitizer reports are the sanitizers' business.
+//
+// PLY and OBJ have in-memory entry points. The XML and JSON loaders only take a path, so the input is written to
+// `scratch/input.xml` (`.json`) first. The scratch folder also holds small fixture files with fixed names that the
+// seeds reference (plyFile="fixture.ply", binaryFile="vertices.bin", obj_file_path "fixture.obj", ...), so
+// mutated scenes reach the code behind a successful reference and not only the "cannot open" error.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <cstdlib>
+#include <fstream>
+#include <initializer_list>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "scenes/json_loader.h"
+#include "scenes/obj_loader.h"
+#include "scenes/ply_loader.h"
+#include "scenes/xml_loader.h"
+
+namespace kiln::fuzz {
+
+enum class Loader { Ply, Obj, Xml, Json };
+inline constexpr std::array<Loader, 4> kLoaders = {Loader::Ply, Loader::Obj, Loader::Xml, Loader::Json};
+
+// Folder name under tests/fuzz/corpus/ and tests/fuzz/regressions/, and the input file extension.
+inline std::string_view loader_name(Loader l) {
+  switch (l) {
+    case Loader::Ply:
+      return "ply";
+    case Loader::Obj:
+      return "obj";
+    case Loader::Xml:
+      return "xml";
+    case Loader::Json:
+      return "json";
+  }
+  return "unknown";
+}
+
+inline std::optional<Loader> loader_from_name(std::string_view name) {
+  for (Loader l : kLoaders)
+    if (loader_name(l) == name) return l;
+  return std::nullopt;
+}
+
+inline void write_bytes(const std::filesystem::path& path, std::string_view bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!out) throw std::runtime_error("cannot write fuzz scratch file " + path.string());
+}
+
+// The course's binaryFile layout: little-endian int32 count, then the 4-byte values.
+template <typename T>
+std::string little_endian_block(int32_t count, std::initializer_list<T> values) {
+  static_assert(sizeof(T) == 4);
+  std::string out;
+  auto put = [&](uint32_t u) {
+    for (int b = 0; b < 4; ++b) out.push_back(char((u >> (8 * b)) & 0xFFu));
+  };
+  put(uint32_t(count));
+  for (T v : values) {
+    uint32_t u;
+    std::memcpy(&u, &v, 4);
+    put(u);
+  }
+  return out;
+}
+
+// Fixture files the seeds refer to by name; all valid, all tiny.
+inline void write_fixtures(const std::filesystem::path& dir) {
+  write_bytes(dir / "fixture.ply",
+              "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+              "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\n"
+              "end_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n");
+  std::string binary_ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  binary_ply += little_endian_block<float>(0, {0, 0, 0, 1, 0, 0, 0, 1, 0}).substr(4);
+  binary_ply += '\3';
+  binary_ply += little_endian_block<int32_t>(0, {0, 1, 2}).substr(4);
+  write_bytes(dir / "fixture_binary.ply", binary_ply);
+  write_bytes(dir / "fixture.obj",
+              "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+              "f 1/1/1 2/2/1 3/3/1 4/4/1\n");
+  write_bytes(dir / "vertices.bin", little_endian_block<float>(3, {0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  write_bytes(dir / "texcoords.bin", little_endian_block<float>(3, {0, 0, 1, 0, 0, 1}));
+  write_bytes(dir / "faces.bin", little_endian_block<int32_t>(1, {1, 2, 3}));
+}
+
+// Feeds `data` to the loader. Returns true when it loaded, false when it threw kiln::Error (bad input, expected);
+// anything else propagates. `scratch` must hold the fixtures (write_fixtures) for XML and JSON.
+inline bool run_loader(Loader loader, std::string_view data, const std::filesystem::path& scratch) {
+  try {
+    switch (loader) {
+      case Loader::Ply:
+        parse_ply(data, "fuzz.ply");
+        break;
+      case Loader::Obj:
+        parse_obj(std::string(data), "fuzz.obj");
+        break;
+      case Loader::Xml: {
+        const auto path = scratch / "input.xml";
+        write_bytes(path, data);
+        load_ceng795_xml(path.string());
+        break;
+      }
+      case Loader::Json: {
+        const auto path = scratch / "input.json";
+        write_bytes(path, data);
+        load_cs171_json(path.string());
+        break;
+      }
+    }
+  } catch (const Error&) {
+    return false;
+  }
+  return true;
+}
+
+// libFuzzer glue: a scratch folder per process (fork/jobs modes run several), holding the fixtures, removed at a
+// normal exit. A crashing process leaves its few-KB folder behind, next to the crash input it belongs to.
+inline const std::filesystem::path& harness_scratch() {
+  static const std::filesystem::path dir = [] {
+    const char* tmp = std::getenv("TMPDIR");
+    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/kiln_fuzz_XXXXXX";
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a fuzz scratch folder in " + pattern);
+    write_fixtures(pattern);
+    return std::filesystem::path(pattern);
+  }();
+  static const int cleanup = std::atexit([] {
+    std::error_code ec;
+    std::filesystem::remove_all(harness_scratch(), ec);
+  });
+  (void)cleanup;
+  return dir;
+}
+
+inline int harness_input(Loader loader, const uint8_t* data, size_t size) {
+  run_loader(loader, std::string_view(reinterpret_cast<const char*>(data), size), harness_scratch());
+  return 0;  // libFuzzer: keep the input's coverage
+}
+
+}  // namespace kiln::fuzz
