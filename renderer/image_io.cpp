@@ -45,7 +45,8 @@ void write_with_oiio(const std::string& path, const OIIO::ImageSpec& spec, const
 
 }  // namespace
 
-void write_exr(const std::string& path, const Image& rgb, const std::vector<AovLayer>& aovs, const Metadata& meta) {
+void write_exr(const std::string& path, const Image& rgb, const std::vector<AovLayer>& aovs, const Metadata& meta,
+               const std::optional<DataWindow>& window) {
   size_t nch = 3;
   for (const AovLayer& a : aovs) nch += a.channels.size();
   OIIO::ImageSpec spec(rgb.width(), rgb.height(), int(nch), OIIO::TypeDesc::FLOAT);
@@ -53,6 +54,13 @@ void write_exr(const std::string& path, const Image& rgb, const std::vector<AovL
   for (const AovLayer& a : aovs)
     for (const std::string& c : a.channels) spec.channelnames.push_back(c);
   spec.attribute("compression", "zip");
+  if (window) {
+    spec.x = window->x;
+    spec.y = window->y;
+    spec.full_x = spec.full_y = 0;
+    spec.full_width = window->full_width;
+    spec.full_height = window->full_height;
+  }
   for (const auto& [k, v] : meta) spec.attribute(k, v);
   const size_t npx = size_t(rgb.width()) * size_t(rgb.height());
   std::vector<float> data(npx * nch);
@@ -106,6 +114,7 @@ ExrFile read_exr(const std::string& path) {
     f.aovs.push_back(std::move(a));
   }
   for (const auto& p : spec.extra_attribs) f.meta.emplace_back(p.name().string(), p.get_string());
+  f.window = DataWindow{spec.x, spec.y, spec.full_width, spec.full_height};
   in->close();
   return f;
 }

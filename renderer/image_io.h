@@ -2,6 +2,7 @@
 // renamed into place, so a crash or an interrupt never leaves a half-written image.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,14 +19,27 @@ struct AovLayer {
 
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 
+// Where a cropped image sits in the full frame (EXR data window inside the display window).
+struct DataWindow {
+  int x = 0, y = 0;                  // origin of the data window
+  int full_width = 0, full_height = 0;
+};
+
 // Linear float32 (never half: values above 65504 must survive) with string metadata attributes.
-void write_exr(const std::string& path, const Image& rgb, const std::vector<AovLayer>& aovs, const Metadata& meta);
+void write_exr(const std::string& path, const Image& rgb, const std::vector<AovLayer>& aovs, const Metadata& meta,
+               const std::optional<DataWindow>& window = std::nullopt);
 void write_png(const std::string& path, const std::vector<uint8_t>& rgb8, int width, int height);
 
 struct ExrFile {
   Image rgb;
   std::vector<AovLayer> aovs;  // every channel other than R, G, B (one layer per channel here)
   Metadata meta;
+  DataWindow window;  // the data window (x, y) and the full frame size
+  std::string find(const std::string& key) const {
+    for (const auto& [k, v] : meta)
+      if (k == key) return v;
+    return {};
+  }
 };
 // Throws kiln::Error when the file cannot be read or has no R,G,B channels.
 ExrFile read_exr(const std::string& path);

@@ -30,6 +30,13 @@ int main(int argc, char** argv) {
   render->add_option("--max-depth", ra.max_depth, "Maximum bounces after the camera ray (-1: unlimited, needs --rr)");
   render->add_option("--clamp", ra.clamp, "Clamp per-sample radiance to this maximum (biased; 0 = off)")->capture_default_str();
   render->add_option("--subdivide", ra.subdivide, "Loop-subdivide every mesh this many times");
+  render->add_option("--crop", ra.crop, "Render only pixels x0,x1,y0,y1 (x1, y1 exclusive); written as an EXR data window");
+  render->add_option("--spp-range", ra.spp_range,
+                     "Render only sample indices FIRST:LAST (LAST exclusive) of the frame; seeds follow the absolute "
+                     "index, so parts from `kiln merge` equal a single run");
+  render->add_option("--aov", ra.aovs, "Extra EXR layers: albedo,normal,depth,position,variance (or all)");
+  render->add_flag("--physical-lights", ra.physical_lights,
+                   "Use exact estimators where the course references follow other conventions (README)");
   render->add_flag("--all-features", ra.all_features, "Render with every feature code path enabled (to measure the mask's gain)")
       ->group("");
   render->add_flag("--reverse-tiles", ra.reverse_tiles, "Schedule tiles in reverse order (determinism checks)")->group("");
@@ -47,6 +54,12 @@ int main(int argc, char** argv) {
   compare->add_option("reference", cmp_ref, "Reference EXR")->required();
   compare->add_option("--block", cmp_block, "Block size in pixels for the block statistics")->capture_default_str();
 
+  std::vector<std::string> merge_parts;
+  std::string merge_out;
+  auto* merge = app.add_subcommand("merge", "Combine partial renders (--crop / --spp-range parts) into one EXR");
+  merge->add_option("parts", merge_parts, "Partial EXR files written by kiln render")->required();
+  merge->add_option("-o,--output", merge_out, "Merged EXR to write")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -56,6 +69,7 @@ int main(int argc, char** argv) {
   ra.accel = accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*render) return run_guarded([&] { return cmd_render(ra); });
   if (*info) return run_guarded([&] { return cmd_info(info_scene, info_subdivide); });
+  if (*merge) return run_guarded([&] { return cmd_merge(merge_parts, merge_out); });
   if (*compare) return run_guarded([&] { return cmd_compare(cmp_image, cmp_ref, cmp_block); });
   return kExitBadInput;
 }

@@ -112,12 +112,12 @@ void refine_edge_functions(int lanes, const float* ax, const float* ay, const fl
 
 // The watertight test of triangle_intersect.h on four triangles at once (same operations in the same order, so
 // each lane's result is bit-identical to the scalar test). Returns the bit mask of lanes hit in [tmin, tmax] and
-// their t and barycentrics.
+// their t and barycentrics (only the lanes of the mask are meaningful).
 inline int intersect_tri4(const Tri4& p, const TravRay& r, float tmax, float* t_out, float* b1_out, float* b2_out) {
   const WatertightRay& w = r.wr;
   const float o[3] = {w.o.x, w.o.y, w.o.z};
   const __m128 okx = _mm_set1_ps(o[w.kx]), oky = _mm_set1_ps(o[w.ky]), okz = _mm_set1_ps(o[w.kz]);
-  const __m128 sx = _mm_set1_ps(w.sx), sy = _mm_set1_ps(w.sy), sz = _mm_set1_ps(w.sz);
+  const __m128 sx = _mm_set1_ps(w.sx), sy = _mm_set1_ps(w.sy);
   const __m128 az = _mm_sub_ps(_mm_load_ps(p.v[0][w.kz]), okz);
   const __m128 bz = _mm_sub_ps(_mm_load_ps(p.v[1][w.kz]), okz);
   const __m128 cz = _mm_sub_ps(_mm_load_ps(p.v[2][w.kz]), okz);
@@ -143,18 +143,21 @@ inline int intersect_tri4(const Tri4& p, const TravRay& r, float tmax, float* t_
   const __m128 all_ge = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmpge_ps(v, zero)), _mm_cmpge_ps(wv, zero));
   const __m128 all_le = _mm_and_ps(_mm_and_ps(_mm_cmple_ps(u, zero), _mm_cmple_ps(v, zero)), _mm_cmple_ps(wv, zero));
   const __m128 det = _mm_add_ps(_mm_add_ps(u, v), wv);
-  __m128 ok = _mm_and_ps(_mm_or_ps(all_ge, all_le), _mm_cmpneq_ps(det, zero));
-  if (!_mm_movemask_ps(ok)) return 0;
-  const __m128 tdet = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(sz, az)), _mm_mul_ps(v, _mm_mul_ps(sz, bz))),
-                                 _mm_mul_ps(wv, _mm_mul_ps(sz, cz)));
+  const __m128 ok = _mm_and_ps(_mm_or_ps(all_ge, all_le), _mm_cmpneq_ps(det, zero));
+  int mask = _mm_movemask_ps(ok);
+  if (!mask) return 0;
+  // The line crosses these triangles: their distance, in double (see triangle_intersect.h), decides the range.
   const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
-  const __m128 t = _mm_mul_ps(tdet, inv_det);
-  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(t, _mm_set1_ps(r.tmin)), _mm_cmple_ps(t, _mm_set1_ps(tmax))));
-  const int mask = _mm_movemask_ps(ok);
-  if (mask) {
-    _mm_storeu_ps(t_out, t);
-    _mm_storeu_ps(b1_out, _mm_mul_ps(v, inv_det));
-    _mm_storeu_ps(b2_out, _mm_mul_ps(wv, inv_det));
+  _mm_storeu_ps(b1_out, _mm_mul_ps(v, inv_det));
+  _mm_storeu_ps(b2_out, _mm_mul_ps(wv, inv_det));
+  for (int m = mask; m; m &= m - 1) {
+    const int lane = __builtin_ctz(unsigned(m));
+    const float a[3] = {p.v[0][0][lane], p.v[0][1][lane], p.v[0][2][lane]};
+    const float b[3] = {p.v[1][0][lane], p.v[1][1][lane], p.v[1][2][lane]};
+    const float c[3] = {p.v[2][0][lane], p.v[2][1][lane], p.v[2][2][lane]};
+    const float t = plane_distance(w.o, w.d, a, b, c);
+    t_out[lane] = t;
+    if (!(t >= r.tmin && t <= tmax)) mask &= ~(1 << lane);
   }
   return mask;
 }

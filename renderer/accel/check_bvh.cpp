@@ -21,15 +21,21 @@ struct RayOutcome {
   Outcome camera = Outcome::None, bounce = Outcome::None, shadow = Outcome::None;
 };
 
-bool distances_agree(float a, float b) {
-  const float scale = std::max(std::abs(a), std::abs(b));
-  return std::abs(a - b) <= kCheckBvhDistanceTolerance * scale;
+float ulp(float x) {
+  x = std::abs(x);
+  return std::nextafter(x, kInfinity) - x;
 }
 
-Outcome compare(bool ha, const Hit& a, bool hb, const Hit& b) {
+bool distances_agree(const Ray& r, float a, float b) {
+  const float dt = std::abs(a - b);
+  if (dt <= kCheckBvhDistanceTolerance * std::max(std::abs(a), std::abs(b))) return true;
+  return dt * length(r.d) <= kCheckBvhHitPointUlps * ulp(max_component(abs(r.at(a))));
+}
+
+Outcome compare(const Ray& r, bool ha, const Hit& a, bool hb, const Hit& b) {
   if (ha != hb) return Outcome::Disagree;
   if (!ha) return Outcome::Agree;
-  if (!distances_agree(a.t, b.t)) return Outcome::Disagree;
+  if (!distances_agree(r, a.t, b.t)) return Outcome::Disagree;
   if (a.shape != b.shape || a.prim != b.prim) return Outcome::Tie;
   return Outcome::Agree;
 }
@@ -94,6 +100,7 @@ std::string CheckBvhReport::to_json() const {
   s += "  \"edge_ties\": " + kinds_json(&CheckBvhKind::edge_ties, *this) + ",\n";
   s += "  \"max_disagreement_rate\": " + num(kCheckBvhMaxDisagreementRate) + ",\n";
   s += "  \"distance_tolerance\": " + num(kCheckBvhDistanceTolerance) + ",\n";
+  s += "  \"hit_point_ulps\": " + num(kCheckBvhHitPointUlps) + ",\n";
   s += "  \"bvh\": {\"sah_cost\": " + num(bvh.sah_cost) + ", \"nodes\": " + std::to_string(bvh.nodes) +
        ", \"leaves\": " + std::to_string(bvh.leaves) + ", \"max_depth\": " + std::to_string(bvh.max_depth) +
        ", \"primitives\": " + std::to_string(bvh.primitives) + ", \"leaf_size_histogram\": [" + hist + "]},\n";
@@ -124,7 +131,7 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
     const Ray cam = camera_ray(i, rng);
     Hit ea, ba;
     const bool he = embree.intersect(cam, ea), hb = bvh.intersect(cam, ba);
-    out.camera = compare(he, ea, hb, ba);
+    out.camera = compare(cam, he, ea, hb, ba);
     if (out.camera == Outcome::Disagree) notes[i] = describe("camera", i, cam, he, ea, hb, ba);
     if (!he) return;
     const float len = length(ea.ng);
@@ -136,7 +143,7 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
     const Ray bounce = spawn_ray(p, ng, frame.to_world(sample_cosine_hemisphere(rng.next_2d())));
     Hit eb, bb;
     const bool he2 = embree.intersect(bounce, eb), hb2 = bvh.intersect(bounce, bb);
-    out.bounce = compare(he2, eb, hb2, bb);
+    out.bounce = compare(bounce, he2, eb, hb2, bb);
     if (out.bounce == Outcome::Disagree && notes[i].empty()) notes[i] = describe("bounce", i, bounce, he2, eb, hb2, bb);
 
     const Vec3f u(rng.next_float(), rng.next_float(), rng.next_float());

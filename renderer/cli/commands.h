@@ -29,12 +29,21 @@ struct RenderArgs {
   bool all_features = false;
   int subdivide = -1;
   bool reverse_tiles = false;
+  std::optional<std::string> crop;       // "x0,x1,y0,y1"
+  std::optional<std::string> spp_range;  // "FIRST:LAST" (absolute sample indices, LAST exclusive)
+  std::optional<std::string> aovs;       // "albedo,normal,depth,position,variance"
+  std::optional<double> time_limit;      // seconds
+  std::optional<std::string> reference;  // EXR to report error against after every doubling of spp
+  bool physical_lights = false;          // exact estimators even where the course references use other ones
 };
 
 int cmd_render(const RenderArgs& args);
 int cmd_info(const std::string& scene_path, int subdivide);
 // Prints block-luminance statistics and MSE / relMSE of image against reference (both EXR) as JSON.
 int cmd_compare(const std::string& image, const std::string& reference, int block);
+
+// Merges partial renders into one EXR (see renderer/merge.h).
+int cmd_merge(const std::vector<std::string>& parts, const std::string& output);
 
 // Runs fn, mapping kiln::Error (bad input) to a one-line message and exit code 2.
 int run_guarded(const std::function<int()>& fn);

@@ -3,9 +3,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -221,7 +222,10 @@ ProfileReport run_profile(const ProfileArgs& args) {
     r.shadow = ray_kind(rs.rays.shadow, rs.seconds);
     r.indirect = ray_kind(rs.rays.indirect, rs.seconds);
     r.total = ray_kind(rs.rays.total(), rs.seconds);
-    const double thread_seconds = std::max(1e-9, rs.seconds * double(r.threads));
+    // Thread time is the render's CPU time: on a shared machine wall x threads would count descheduled time.
+    const double thread_seconds =
+        std::max(1e-9, r.render_cpu_seconds > 0.0 ? r.render_cpu_seconds : rs.seconds * double(r.threads));
+    r.mrays_per_cpu_second = double(rs.rays.total()) / thread_seconds / 1e6;
     r.ray_query_share = std::clamp(double(rs.rays.query_cycles) / tsc_frequency() / thread_seconds, 0.0, 1.0);
     r.render_peak_rss = phase_peak();
   }
@@ -253,7 +257,7 @@ std::string profile_json(const ProfileReport& r) {
   if (r.rendered) {
     j["render"] = {{"camera", r.camera}, {"width", r.width}, {"height", r.height}, {"spp", r.spp}};
     j["rays"] = {{"primary", kind(r.primary)}, {"shadow", kind(r.shadow)}, {"indirect", kind(r.indirect)},
-                 {"total", kind(r.total)}};
+                 {"total", kind(r.total)}, {"mrays_per_cpu_second", r.mrays_per_cpu_second}};
     j["time_share"] = {{"ray_queries", r.ray_query_share},
                        {"shading_and_sampling", 1.0 - r.ray_query_share},
                        {"note", "shading_and_sampling is the remainder of the render's thread time: shading, "
@@ -305,6 +309,7 @@ std::string profile_table(const ProfileReport& r) {
     for (const auto& [name, k] : {std::pair{"primary", r.primary}, std::pair{"shadow", r.shadow},
                                   std::pair{"indirect", r.indirect}, std::pair{"total", r.total}})
       add("  %-26s %14llu %10.2f\n", name, (unsigned long long)k.count, k.mrays_per_second);
+    add("  %-26s %14s %10.2f\n", "total per CPU second", "", r.mrays_per_cpu_second);
     add("\n  render thread time: %.0f%% ray queries, %.0f%% shading+sampling (remainder: shading, BSDF/light "
         "sampling, camera rays, film, scheduling)\n",
         100.0 * r.ray_query_share, 100.0 * (1.0 - r.ray_query_share));

@@ -11,7 +11,9 @@
 #include <thread>
 
 #include "core/error.h"
+#include "renderer/aov.h"
 #include "renderer/cli/commands.h"
+#include "renderer/merge.h"
 #include "renderer/image_io.h"
 #include "renderer/tonemap.h"
 #include "renderer/world.h"
@@ -21,6 +23,8 @@ namespace kiln {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
+// Samples per pixel of the AOV pass: enough to anti-alias edges, cheap next to the beauty render.
+constexpr uint32_t kAovSamplesPerPixel = 4;
 extern "C" void on_signal(int) { g_interrupted.store(true); }
 
 // TSC ticks per second, measured once against the steady clock (for the ray-query time share).
@@ -100,7 +104,58 @@ nlohmann::json world_stats_json(const World& w) {
           {"unsupported", w.unsupported}};
 }
 
+Crop parse_crop(const std::string& text, int width, int height) {
+  Crop c;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%d,%d,%d,%d%c", &c.x0, &c.x1, &c.y0, &c.y1, &extra) != 4)
+    throw Error("--crop", "", "expected x0,x1,y0,y1 (pixels, x1 and y1 exclusive), got '" + text + "'");
+  if (c.x0 < 0 || c.y0 < 0 || c.x1 > width || c.y1 > height || c.x0 >= c.x1 || c.y0 >= c.y1)
+    throw Error("--crop", "", "'" + text + "' is empty or outside the " + std::to_string(width) + "x" +
+                                  std::to_string(height) + " frame");
+  return c;
+}
+
+std::pair<uint32_t, uint32_t> parse_spp_range(const std::string& text) {
+  unsigned long long a = 0, b = 0;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%llu:%llu%c", &a, &b, &extra) != 2 || a >= b || b > 0xffffffffull)
+    throw Error("--spp-range", "", "expected FIRST:LAST with FIRST < LAST, got '" + text + "'");
+  return {uint32_t(a), uint32_t(b)};
+}
+
+Image crop_image(const Image& img, const Crop& c) {
+  Image out(c.x1 - c.x0, c.y1 - c.y0);
+  for (int y = c.y0; y < c.y1; ++y)
+    for (int x = c.x0; x < c.x1; ++x) out.at(x - c.x0, y - c.y0) = img.at(x, y);
+  return out;
+}
+
+std::vector<AovLayer> crop_layers(std::vector<AovLayer> layers, int width, const Crop& c) {
+  for (AovLayer& l : layers) {
+    const size_t nc = l.channels.size();
+    std::vector<float> d;
+    d.reserve(size_t(c.x1 - c.x0) * size_t(c.y1 - c.y0) * nc);
+    for (int y = c.y0; y < c.y1; ++y)
+      for (int x = c.x0; x < c.x1; ++x)
+        for (size_t k = 0; k < nc; ++k) d.push_back(l.data[(size_t(y) * size_t(width) + size_t(x)) * nc + k]);
+    l.data = std::move(d);
+  }
+  return layers;
+}
+
 }  // namespace
+
+int cmd_merge(const std::vector<std::string>& parts, const std::string& output) {
+  const MergeResult r = merge_parts(parts);
+  write_exr(output, r.image, {},
+            {{"kiln:version", KILN_VERSION},
+             {"kiln:merged_parts", std::to_string(parts.size())},
+             {"kiln:spp", std::to_string(r.max_samples)},
+             {"kiln:incomplete", r.complete ? "false" : "true"}});
+  std::printf("%s\n", output.c_str());
+  if (!r.complete) std::fprintf(stderr, "kiln: warning: pixels received different sample counts (missing parts?)\n");
+  return 0;
+}
 
 int cmd_render(const RenderArgs& args) {
   const auto t_start = std::chrono::steady_clock::now();
@@ -120,6 +175,8 @@ int cmd_render(const RenderArgs& args) {
 
   WorldOptions wo;
   wo.accel = args.accel;
+  if (args.physical_lights) wo.course_conventions = false;
+  const uint32_t aov_flags = args.aovs ? parse_aovs(*args.aovs) : 0u;
   const auto world = build_world(scene, wo);
   if (!args.quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", args.scene.c_str(), w.c_str());
@@ -145,7 +202,12 @@ int cmd_render(const RenderArgs& args) {
     apply_overrides(settings, args);
     settings.features = args.all_features ? kFeatureAll : world->features;
     const uint32_t spp = args.spp.value_or(uint32_t(std::max(1, cd->num_samples)));
+    uint32_t first = 0, last = spp;
+    if (args.spp_range) std::tie(first, last) = parse_spp_range(*args.spp_range);
+    std::optional<Crop> crop;
+    if (args.crop) crop = parse_crop(*args.crop, camera.width(), camera.height());
     RenderOptions ro;
+    ro.crop = crop;
     ro.seed = args.seed;
     ro.spp_total = spp;
     ro.progress = !args.quiet;
@@ -155,22 +217,30 @@ int cmd_render(const RenderArgs& args) {
     if (!args.quiet)
       std::fprintf(stderr, "kiln: camera %s: %dx%d, %u spp, %s\n", cd->id.c_str(), camera.width(), camera.height(), spp,
                    settings.describe().c_str());
-    const RenderStats rs = render_samples(*world, camera, settings, ro, 0, spp, film);
+    const RenderStats rs = render_samples(*world, camera, settings, ro, first, last, film);
     interrupted = rs.cancelled;
 
     const std::string stem = stem_of(cd->image_name, "camera" + cd->id);
     const std::string exr = (std::filesystem::path(args.out_dir) / (stem + ".exr")).string();
     const std::string png = (std::filesystem::path(args.out_dir) / (stem + ".png")).string();
-    const Image img = film.mean();
+    const Image full = film.mean();
+    std::vector<AovLayer> aovs;
+    if (aov_flags) aovs = render_aovs(*world, camera, aov_flags, film, ro, kAovSamplesPerPixel);
+    const Image img = crop ? crop_image(full, *crop) : full;
+    if (crop) aovs = crop_layers(std::move(aovs), camera.width(), *crop);
+    std::optional<DataWindow> window;
+    if (crop) window = DataWindow{crop->x0, crop->y0, camera.width(), camera.height()};
     Metadata meta = {{"kiln:version", KILN_VERSION},
                      {"kiln:scene", args.scene},
                      {"kiln:camera", cd->id},
-                     {"kiln:spp", std::to_string(spp)},
+                     {"kiln:spp", std::to_string(last - first)},
+                     {"kiln:spp_first", std::to_string(first)},
+                     {"kiln:spp_last", std::to_string(last)},
                      {"kiln:seed", std::to_string(args.seed)},
                      {"kiln:integrator", settings.describe()},
                      {"kiln:render_seconds", std::to_string(rs.seconds)},
                      {"kiln:incomplete", rs.cancelled ? "true" : "false"}};
-    write_exr(exr, img, {}, meta);
+    write_exr(exr, img, aovs, meta, window);
     write_png(png, to_ldr(img, preview_for_camera(*cd, scene)), img.width(), img.height());
 
     const double query_seconds = double(rs.rays.query_cycles) / tsc_frequency();

@@ -1,0 +1,117 @@
+// Kiln against the course's own reference renders (CENG795), with the acceptance statistics of issues 2-5:
+// LDR scenes by the share of 8-bit pixels within a tolerance, HDR scenes by 32x32 block-luminance statistics
+// (noise-aware: Monte Carlo scenes are rendered at fewer samples than the references, and blocks average the noise).
+#include <gtest/gtest.h>
+
+#include "render_util.h"
+#include "renderer/image_compare.h"
+#include "renderer/image_io.h"
+#include "renderer/tonemap.h"
+
+namespace kiln::test {
+namespace {
+
+std::string course(const std::string& rel) { return shared_dir() + "/scenes/ceng795/" + rel; }
+
+// Renders one camera of a course scene the way `kiln render` does; spp 0 keeps the scene's NumSamples.
+Image render_course_camera(const SceneDesc& scene, size_t camera, uint32_t spp) {
+  const auto world = build_world(scene, {});
+  const CameraDesc& cd = scene.cameras.at(camera);
+  return render_image(*world, cd, settings_for_camera(cd, scene), spp ? spp : uint32_t(std::max(1, cd.num_samples)));
+}
+
+Image png_preview(const Image& img, const SceneDesc& scene, size_t camera) {
+  const std::vector<uint8_t> ldr = to_ldr(img, preview_for_camera(scene.cameras[camera], scene));
+  Image out(img.width(), img.height());
+  for (size_t i = 0; i < out.pixels().size(); ++i)
+    out.pixels()[i] = Rgb(ldr[3 * i] / 255.0f, ldr[3 * i + 1] / 255.0f, ldr[3 * i + 2] / 255.0f);
+  return out;
+}
+
+size_t camera_named(const SceneDesc& s, const std::string& image_name) {
+  for (size_t i = 0; i < s.cameras.size(); ++i)
+    if (s.cameras[i].image_name == image_name) return i;
+  ADD_FAILURE() << "no camera writes " << image_name;
+  return 0;
+}
+
+#define REQUIRE_SHARED() \
+  if (!have_shared()) GTEST_SKIP() << "course scenes not found under KILN_SHARED_DIR=" << shared_dir()
+
+// Issue 2: hw1_2021 LDR scenes, >= 99% of pixels within 3/255 of the course PNG.
+class Hw1Reference : public ::testing::TestWithParam<std::string> {};
+TEST_P(Hw1Reference, MatchesCoursePng) {
+  REQUIRE_SHARED();
+  const SceneDesc scene = load_scene(course("regression/hw1_2021/" + GetParam() + ".xml"));
+  const Image mine = png_preview(render_course_camera(scene, 0, 0), scene, 0);
+  const Image ref = read_image(course("regression/hw1_2021/" + GetParam() + ".png"));
+  EXPECT_GE(ldr_match_fraction(mine, ref, 3), 0.99);
+}
+INSTANTIATE_TEST_SUITE_P(Course, Hw1Reference,
+                         ::testing::Values("simple", "two_spheres", "spheres", "cornellbox", "cornellbox_recursive",
+                                           "bunny", "scienceTree"));
+
+// Issue 3: BRDF spheres, >= 98% of pixels within 4/255 of the course PNG; the 2021 variants render.
+class BrdfReference : public ::testing::TestWithParam<std::string> {};
+TEST_P(BrdfReference, MatchesCoursePng) {
+  REQUIRE_SHARED();
+  const SceneDesc scene = load_scene(course("brdf/" + GetParam() + ".xml"));
+  const Image mine = png_preview(render_course_camera(scene, 0, 0), scene, 0);
+  EXPECT_GE(ldr_match_fraction(mine, read_image(course("brdf/reference/" + GetParam() + ".png")), 4), 0.98);
+  const SceneDesc s2021 = load_scene(course("brdf_2021/" + GetParam() + ".xml"));
+  const Image img2021 = render_course_camera(s2021, 0, 0);
+  for (const Rgb& c : img2021.pixels()) ASSERT_TRUE(c.is_finite() && !c.has_negative());
+}
+INSTANTIATE_TEST_SUITE_P(Course, BrdfReference,
+                         ::testing::Values("brdf_phong_original", "brdf_phong_modified", "brdf_phong_modified_normalized",
+                                           "brdf_blinnphong_original", "brdf_blinnphong_modified",
+                                           "brdf_blinnphong_modified_normalized", "brdf_torrancesparrow"));
+
+// Issue 4: direct lighting against the course EXRs: block median < 3%, p95 < 10% (rendered at 16 of 100 spp).
+constexpr uint32_t kDirectLightingTestSpp = 16;
+class DirectLightingReference : public ::testing::TestWithParam<std::string> {};
+TEST_P(DirectLightingReference, MatchesCourseExr) {
+  REQUIRE_SHARED();
+  const SceneDesc scene = load_scene(course("directLighting/" + GetParam() + ".xml"));
+  const Image mine = render_course_camera(scene, 0, kDirectLightingTestSpp);
+  const BlockStats b = block_luminance_stats(mine, read_exr(course("directLighting/" + GetParam() + ".exr")).rgb, 32);
+  EXPECT_LT(b.median_rel, 0.03);
+  EXPECT_LT(b.p95_rel, 0.10);
+}
+INSTANTIATE_TEST_SUITE_P(Course, DirectLightingReference,
+                         ::testing::Values("cornellbox_jaroslav_diffuse", "cornellbox_jaroslav_glossy",
+                                           "cornellbox_jaroslav_diffuse_area", "cornellbox_jaroslav_glossy_area",
+                                           "cornellbox_jaroslav_glossy_area_small",
+                                           "cornellbox_jaroslav_glossy_area_sphere",
+                                           "cornellbox_jaroslav_glossy_area_ellipsoid"));
+
+// Issue 5: path-tracing cameras with NEE (the low-noise ones, so 32 spp suffice for the block statistics; the
+// others are checked at full spp outside CI, see the issue notes).
+struct PtCase {
+  const char* scene;
+  const char* image;
+  bool roulette;
+};
+class PathTracingReference : public ::testing::TestWithParam<PtCase> {};
+TEST_P(PathTracingReference, MatchesCourseExr) {
+  REQUIRE_SHARED();
+  const PtCase& c = GetParam();
+  const SceneDesc scene = load_scene(course(std::string("pathTracing/cornellbox_jaroslav_path_") + c.scene + ".xml"));
+  const Image mine = render_course_camera(scene, camera_named(scene, std::string(c.image) + ".exr"), 32);
+  const BlockStats b = block_luminance_stats(mine, read_exr(course(std::string("pathTracing/") + c.image + ".exr")).rgb, 32);
+  if (c.roulette) {
+    EXPECT_NEAR(b.mean_ratio, 1.0, 0.10);
+    EXPECT_LT(b.median_rel, 0.15);
+  } else {
+    EXPECT_LT(b.median_rel, 0.03);
+    EXPECT_LT(b.p95_rel, 0.12);
+  }
+}
+INSTANTIATE_TEST_SUITE_P(Course, PathTracingReference,
+                         ::testing::Values(PtCase{"diffuse", "diffuse_next", false},
+                                           PtCase{"glass", "glass_next_importance", false},
+                                           PtCase{"diffuse", "diffuse_next_importance_russian", true}),
+                         [](const auto& tp) { return std::string(tp.param.image); });
+
+}  // namespace
+}  // namespace kiln::test
