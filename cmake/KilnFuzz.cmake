@@ -38,6 +38,7 @@ foreach(_src IN LISTS _kiln_fuzz_harnesses)
   set(_tgt kiln_fuzz_${_loader})
   add_executable(${_tgt} "${_src}")
   target_link_libraries(${_tgt} PRIVATE kiln_scenes)  # defined later; resolved at generate time
+  target_compile_features(${_tgt} PRIVATE cxx_std_20)
   target_link_options(${_tgt} PRIVATE -fsanitize=fuzzer)
   kiln_apply_warnings(${_tgt})
   list(APPEND KILN_FUZZ_TARGETS ${_tgt})

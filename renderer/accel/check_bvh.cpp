@@ -9,13 +9,16 @@
 #include "core/sampling.h"
 #include "renderer/accel/bvh.h"
 #include "renderer/accel/embree_accel.h"
+#include "renderer/accel/exact_hit.h"
 #include "renderer/accel/hit_point.h"
 #include "renderer/accel/shape_bounds.h"
 
 namespace kiln {
 namespace {
 
-enum class Outcome : uint8_t { None, Agree, Tie, Disagree };  // None: ray not shot
+// None: ray not shot. Disagreements carry the referee's verdict.
+enum class Outcome : uint8_t { None, Agree, Tie, EmbreeFault, BvhFault, Unresolved };
+bool is_disagreement(Outcome o) { return o >= Outcome::EmbreeFault; }
 
 struct RayOutcome {
   Outcome camera = Outcome::None, bounce = Outcome::None, shadow = Outcome::None;
@@ -32,12 +35,51 @@ bool distances_agree(const Ray& r, float a, float b) {
   return dt * length(r.d) <= kCheckBvhHitPointUlps * ulp(max_component(abs(r.at(a))));
 }
 
-Outcome compare(const Ray& r, bool ha, const Hit& a, bool hb, const Hit& b) {
-  if (ha != hb) return Outcome::Disagree;
-  if (!ha) return Outcome::Agree;
-  if (!distances_agree(r, a.t, b.t)) return Outcome::Disagree;
-  if (a.shape != b.shape || a.prim != b.prim) return Outcome::Tie;
-  return Outcome::Agree;
+// What exact arithmetic says about a reported hit: beside the primitive or out of [tmin, tmax] (spurious), clearly
+// on it (real), or on it / beside it within float noise of an edge or silhouette (borderline).
+enum class Verdict { Real, Spurious, Borderline };
+Verdict judge(const ExactHit& e) {
+  if (e.hit) return e.near_edge ? Verdict::Borderline : Verdict::Real;
+  return e.near_edge && e.in_range ? Verdict::Borderline : Verdict::Spurious;
+}
+
+// Which of two disagreeing closest-hit answers (a: Embree, b: BVH) exact arithmetic contradicts.
+Outcome referee(const WorldGeometry& g, const Ray& r, bool ha, const Hit& a, bool hb, const Hit& b) {
+  const ExactHit ea = ha ? exact_hit(g, r, a.shape, a.prim) : ExactHit{};
+  const ExactHit eb = hb ? exact_hit(g, r, b.shape, b.prim) : ExactHit{};
+  const Verdict va = ha ? judge(ea) : Verdict::Real, vb = hb ? judge(eb) : Verdict::Real;
+  const bool a_bad = va == Verdict::Spurious, b_bad = vb == Verdict::Spurious;
+  if (a_bad || b_bad) return a_bad && b_bad ? Outcome::Unresolved : a_bad ? Outcome::EmbreeFault : Outcome::BvhFault;
+  if (ha != hb) {  // one missed the other's hit: its fault unless that hit is a graze
+    if ((ha ? va : vb) == Verdict::Borderline) return Outcome::Unresolved;
+    return ha ? Outcome::BvhFault : Outcome::EmbreeFault;
+  }
+  // Both hit something real: the one reporting the farther primitive is wrong, unless the nearer one is a graze;
+  // at the same exact distance, the less accurate t is.
+  if (std::abs(ea.t - eb.t) > double(kCheckBvhDistanceTolerance) * 0.1 * std::max(ea.t, eb.t)) {
+    if ((ea.t < eb.t ? va : vb) == Verdict::Borderline) return Outcome::Unresolved;
+    return ea.t < eb.t ? Outcome::BvhFault : Outcome::EmbreeFault;
+  }
+  return std::abs(double(a.t) - ea.t) > std::abs(double(b.t) - eb.t) ? Outcome::EmbreeFault : Outcome::BvhFault;
+}
+
+Outcome compare(const WorldGeometry& g, const Ray& r, bool ha, const Hit& a, bool hb, const Hit& b) {
+  if (ha == hb && (!ha || distances_agree(r, a.t, b.t)))
+    return ha && (a.shape != b.shape || a.prim != b.prim) ? Outcome::Tie : Outcome::Agree;
+  return referee(g, r, ha, a, hb, b);
+}
+
+// Occlusion answers carry no primitive: the accelerator that reported a blocker names it through intersect().
+Outcome compare_occlusion(const WorldGeometry& g, const Ray& r, const Accelerator& embree, const Accelerator& bvh,
+                          bool oe, bool ob) {
+  if (oe == ob) return Outcome::Agree;
+  const Accelerator& blocked = oe ? embree : bvh;
+  const Outcome blame_blocked = oe ? Outcome::EmbreeFault : Outcome::BvhFault;
+  const Outcome blame_other = oe ? Outcome::BvhFault : Outcome::EmbreeFault;
+  Hit h;
+  if (!blocked.intersect(r, h)) return blame_blocked;  // occluded() and intersect() contradict each other
+  const Verdict v = judge(exact_hit(g, r, h.shape, h.prim));
+  return v == Verdict::Borderline ? Outcome::Unresolved : v == Verdict::Real ? blame_other : blame_blocked;
 }
 
 std::string describe(const char* kind, size_t i, const Ray& r, bool ha, const Hit& a, bool hb, const Hit& b) {
@@ -51,11 +93,20 @@ std::string describe(const char* kind, size_t i, const Ray& r, bool ha, const Hi
   return buf;
 }
 
+std::string verdict(Outcome o) {
+  return o == Outcome::EmbreeFault ? " (referee: Embree is wrong)"
+         : o == Outcome::BvhFault  ? " (referee: the BVH is wrong)"
+                                   : " (referee: unresolved)";
+}
+
 void count(CheckBvhKind& k, Outcome o) {
   if (o == Outcome::None) return;
   ++k.rays;
-  if (o == Outcome::Disagree) ++k.disagreements;
-  if (o == Outcome::Tie) ++k.edge_ties;
+  k.disagreements += is_disagreement(o);
+  k.edge_ties += o == Outcome::Tie;
+  k.embree_faults += o == Outcome::EmbreeFault;
+  k.bvh_faults += o == Outcome::BvhFault;
+  k.unresolved += o == Outcome::Unresolved;
 }
 
 std::string json_escape(const std::string& s) {
@@ -98,6 +149,9 @@ std::string CheckBvhReport::to_json() const {
   s += "  \"rays\": " + kinds_json(&CheckBvhKind::rays, *this) + ",\n";
   s += "  \"disagreements\": " + kinds_json(&CheckBvhKind::disagreements, *this) + ",\n";
   s += "  \"edge_ties\": " + kinds_json(&CheckBvhKind::edge_ties, *this) + ",\n";
+  s += "  \"embree_faults\": " + kinds_json(&CheckBvhKind::embree_faults, *this) + ",\n";
+  s += "  \"bvh_faults\": " + kinds_json(&CheckBvhKind::bvh_faults, *this) + ",\n";
+  s += "  \"unresolved\": " + kinds_json(&CheckBvhKind::unresolved, *this) + ",\n";
   s += "  \"max_disagreement_rate\": " + num(kCheckBvhMaxDisagreementRate) + ",\n";
   s += "  \"distance_tolerance\": " + num(kCheckBvhDistanceTolerance) + ",\n";
   s += "  \"hit_point_ulps\": " + num(kCheckBvhHitPointUlps) + ",\n";
@@ -131,8 +185,8 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
     const Ray cam = camera_ray(i, rng);
     Hit ea, ba;
     const bool he = embree.intersect(cam, ea), hb = bvh.intersect(cam, ba);
-    out.camera = compare(cam, he, ea, hb, ba);
-    if (out.camera == Outcome::Disagree) notes[i] = describe("camera", i, cam, he, ea, hb, ba);
+    out.camera = compare(geometry, cam, he, ea, hb, ba);
+    if (is_disagreement(out.camera)) notes[i] = describe("camera", i, cam, he, ea, hb, ba) + verdict(out.camera);
     if (!he) return;
     const float len = length(ea.ng);
     if (!(len > 0.0f) || !std::isfinite(len)) return;  // degenerate triangle: no direction to leave in
@@ -143,18 +197,19 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
     const Ray bounce = spawn_ray(p, ng, frame.to_world(sample_cosine_hemisphere(rng.next_2d())));
     Hit eb, bb;
     const bool he2 = embree.intersect(bounce, eb), hb2 = bvh.intersect(bounce, bb);
-    out.bounce = compare(bounce, he2, eb, hb2, bb);
-    if (out.bounce == Outcome::Disagree && notes[i].empty()) notes[i] = describe("bounce", i, bounce, he2, eb, hb2, bb);
+    out.bounce = compare(geometry, bounce, he2, eb, hb2, bb);
+    if (is_disagreement(out.bounce) && notes[i].empty())
+      notes[i] = describe("bounce", i, bounce, he2, eb, hb2, bb) + verdict(out.bounce);
 
     const Vec3f u(rng.next_float(), rng.next_float(), rng.next_float());
     const Vec3f target = scene.lo + scene.diagonal() * u;
     const Ray shadow = spawn_ray_to(p, ng, target);
     const bool oe = embree.occluded(shadow), ob = bvh.occluded(shadow);
-    out.shadow = oe == ob ? Outcome::Agree : Outcome::Disagree;
+    out.shadow = compare_occlusion(geometry, shadow, embree, bvh, oe, ob);
     if (oe != ob && notes[i].empty()) {
       Hit a, b;
       a.t = b.t = oe ? 0.0f : kInfinity;
-      notes[i] = describe("shadow", i, shadow, oe, a, ob, b);
+      notes[i] = describe("shadow", i, shadow, oe, a, ob, b) + verdict(out.shadow);
     }
   });
 
@@ -168,7 +223,7 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
   r.bvh = bvh.bvh_stats().world;
   r.embree_stats = embree.stats();
   r.bvh_stats = bvh.stats();
-  r.passed = double(r.total_disagreements()) <= kCheckBvhMaxDisagreementRate * double(r.total_rays());
+  r.passed = double(r.total_bvh_suspect()) <= kCheckBvhMaxDisagreementRate * double(r.total_rays());
   return r;
 }
 
