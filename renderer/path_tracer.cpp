@@ -18,19 +18,28 @@ struct DirectionSample {
   bool transmission = false;
 };
 
+// Probability of choosing the delta part; compiled out for scenes without delta materials.
+template <bool kDelta>
+float delta_prob(const Material& m, Vec3f wo_l) {
+  if constexpr (kDelta) return m.delta_probability(wo_l);
+  else return 0.0f;
+}
+
 // Solid-angle pdf with which the active strategy would have produced wi_l (for MIS weights).
+template <bool kDelta>
 float strategy_pdf(const IntegratorSettings& s, const Material& m, Vec3f wo_l, Vec3f wi_l) {
   switch (s.directions) {
     case DirectionSampling::Brdf:
       return m.pdf(wo_l, wi_l);
     case DirectionSampling::Cosine:
-      return (1.0f - m.delta_probability(wo_l)) * cosine_hemisphere_pdf(wi_l.z);
+      return (1.0f - delta_prob<kDelta>(m, wo_l)) * cosine_hemisphere_pdf(wi_l.z);
     case DirectionSampling::Uniform:
-      return wi_l.z > 0.0f ? (1.0f - m.delta_probability(wo_l)) * uniform_hemisphere_pdf() : 0.0f;
+      return wi_l.z > 0.0f ? (1.0f - delta_prob<kDelta>(m, wo_l)) * uniform_hemisphere_pdf() : 0.0f;
   }
   return 0.0f;
 }
 
+template <bool kDelta>
 std::optional<DirectionSample> sample_direction(const IntegratorSettings& s, const Material& m, Vec3f wo_l, Rng& rng) {
   const float uc = rng.next_float();
   const Vec2f u = rng.next_2d();
@@ -39,8 +48,8 @@ std::optional<DirectionSample> sample_direction(const IntegratorSettings& s, con
     if (!bs || bs->pdf <= 0.0f) return std::nullopt;
     return DirectionSample{bs->wi, bs->f, bs->pdf, bs->is_specular(), bs->is_transmission()};
   }
-  const float pd = m.delta_probability(wo_l);
-  if (uc < pd) {
+  const float pd = delta_prob<kDelta>(m, wo_l);
+  if (kDelta && uc < pd) {
     auto bs = m.sample_delta(wo_l, uc / pd, u);
     if (!bs || bs->pdf <= 0.0f) return std::nullopt;
     return DirectionSample{bs->wi, bs->f, bs->pdf * pd, true, bs->is_transmission()};
@@ -55,9 +64,10 @@ std::optional<DirectionSample> sample_direction(const IntegratorSettings& s, con
   return DirectionSample{wi, m.eval(wo_l, wi), pdf, false, false};
 }
 
-}  // namespace
-
-Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ray, Rng& rng, RayCounters& c) {
+// The path loop, specialised on the scene's feature mask (Cycles-style): a scene without delta materials
+// never asks for delta probabilities, one without dielectrics never tracks media.
+template <bool kDelta, bool kDielectric>
+Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& camera_ray, Rng& rng, RayCounters& c) {
   Rgb L(0.0f), beta(1.0f), potential(1.0f);
   Ray ray = camera_ray;
   bool specular_bounce = true;  // the camera ray counts as one: emitters seen directly are always counted
@@ -103,8 +113,13 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
     const bool last_vertex = depth >= max_depth || course_stop;
     if (last_vertex && !(s.nee_at_last_vertex && use_nee)) break;
     const Material& m = *si.material;
-    if (exits_dielectric(si, ray.d)) beta *= m.transmittance(hit.t * length(ray.d));
-    orient_normals(si, wo);
+    if constexpr (kDielectric) {
+      if (exits_dielectric(si, ray.d)) beta *= m.transmittance(hit.t * length(ray.d));
+      orient_normals(si, wo);
+    } else if (dot(wo, si.ng) < 0.0f) {
+      si.ng = -si.ng;
+      si.ns = -si.ns;
+    }
     const Frame frame(si.ns);
     const Vec3f wo_l = frame.to_local(wo);
 
@@ -119,7 +134,7 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
           const Rgb f = m.eval(wo_l, wi_l);
           if (!f.is_black() && !query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light), c)) {
             const float light_pdf = ls->pdf * pmf;
-            const float weight = (s.mis && !ls->delta) ? power_heuristic(light_pdf, strategy_pdf(s, m, wo_l, wi_l)) : 1.0f;
+            const float weight = (s.mis && !ls->delta) ? power_heuristic(light_pdf, strategy_pdf<kDelta>(s, m, wo_l, wi_l)) : 1.0f;
             L += beta * f * ls->li * (abs_cos_theta(wi_l) * weight / light_pdf);
           }
         }
@@ -127,7 +142,7 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
     }
 
     if (last_vertex) break;
-    const auto ds = sample_direction(s, m, wo_l, rng);
+    const auto ds = sample_direction<kDelta>(s, m, wo_l, rng);
     if (!ds) break;
     const Vec3f wi = frame.to_world(ds->wi_local);
     if (!ds->transmission && !valid_reflection_side(si, wo, wi)) break;
@@ -152,6 +167,15 @@ Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& camera_ra
     if (mx > s.clamp) L *= s.clamp / mx;
   }
   return L;
+}
+
+}  // namespace
+
+Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& ray, Rng& rng, RayCounters& c) {
+  const bool delta = s.features & kFeatureDelta, dielectric = s.features & kFeatureDielectric;
+  if (dielectric) return trace_path_impl<true, true>(w, s, ray, rng, c);
+  if (delta) return trace_path_impl<true, false>(w, s, ray, rng, c);
+  return trace_path_impl<false, false>(w, s, ray, rng, c);
 }
 
 }  // namespace kiln

@@ -1,7 +1,7 @@
 // `kiln profile SCENE|MESH`: where the time and the memory go for one scene. Phases are timed separately
 // (parse, Loop subdivision, world build, accelerator build, render of one camera), in wall-clock and process CPU
 // seconds (CPU time stays meaningful on a machine shared with other jobs). Rays are counted by kind; the render's
-// thread time (its CPU time) is split into ray queries (TSC cycles inside accelerator queries) and the remainder
+// thread time (wall x threads) is split into ray queries (TSC cycles inside accelerator queries) and the remainder
 // (shading + light/BSDF sampling + camera rays + film + scheduling; the integrators do not time these apart).
 // Memory is the process's peak resident set (VmHWM; reset per phase through /proc/self/clear_refs when the kernel
 // allows, so tools that read this process's peak afterwards see only the last phase; else ru_maxrss) plus the
@@ -78,7 +78,7 @@ struct ProfileReport {
   uint32_t spp = 0;
   RayKindStats primary, shadow, indirect, total;
   double mrays_per_cpu_second = 0;  // total rays per second of render CPU time (per core, robust to contention)
-  double ray_query_share = 0;  // of the render's thread time (its process CPU time)
+  double ray_query_share = 0;  // of the render's thread time (render_seconds x threads)
   // Memory (bytes). Peaks are per phase when peak_reset_supported, else the process peak so far.
   size_t baseline_rss = 0, peak_rss = 0;
   size_t parse_peak_rss = 0, subdivision_peak_rss = 0, build_peak_rss = 0, render_peak_rss = 0;

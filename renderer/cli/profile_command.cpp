@@ -222,10 +222,10 @@ ProfileReport run_profile(const ProfileArgs& args) {
     r.shadow = ray_kind(rs.rays.shadow, rs.seconds);
     r.indirect = ray_kind(rs.rays.indirect, rs.seconds);
     r.total = ray_kind(rs.rays.total(), rs.seconds);
-    // Thread time is the render's CPU time: on a shared machine wall x threads would count descheduled time.
-    const double thread_seconds =
-        std::max(1e-9, r.render_cpu_seconds > 0.0 ? r.render_cpu_seconds : rs.seconds * double(r.threads));
-    r.mrays_per_cpu_second = double(rs.rays.total()) / thread_seconds / 1e6;
+    r.mrays_per_cpu_second = double(rs.rays.total()) / std::max(1e-9, r.render_cpu_seconds) / 1e6;
+    // TSC cycles in queries include time the thread was descheduled, so they are compared with wall x threads,
+    // which does too (the render's CPU time does not).
+    const double thread_seconds = std::max(1e-9, rs.seconds * double(r.threads));
     r.ray_query_share = std::clamp(double(rs.rays.query_cycles) / tsc_frequency() / thread_seconds, 0.0, 1.0);
     r.render_peak_rss = phase_peak();
   }

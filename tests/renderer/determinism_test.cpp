@@ -53,3 +53,23 @@ TEST(Determinism, SampleRangesMergeToTheFullRender) {
 
 }  // namespace
 }  // namespace kiln::test
+
+namespace kiln::test {
+namespace {
+
+// The integrator specialised on the scene's feature mask must give exactly the image of the general one.
+TEST(Determinism, FeatureMaskSpecialisationDoesNotChangePixels) {
+  SceneDesc scene = furnace_box(0.6f, Rgb(1.0f));
+  scene.cameras[0].width = scene.cameras[0].height = 16;
+  const auto world = build_world(scene, {});
+  ASSERT_FALSE(world->features & kFeatureDelta);
+  IntegratorSettings s;
+  s.features = world->features;
+  const Image specialised = render_image(*world, scene.cameras[0], s, 4, 3);
+  s.features = kFeatureAll;
+  const Image general = render_image(*world, scene.cameras[0], s, 4, 3);
+  EXPECT_TRUE(bit_identical(specialised, general));
+}
+
+}  // namespace
+}  // namespace kiln::test

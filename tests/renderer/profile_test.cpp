@@ -47,6 +47,7 @@ TEST(Profile, ReportIsConsistent) {
   EXPECT_EQ(r.total.count, r.primary.count + r.shadow.count + r.indirect.count);
   EXPECT_GT(r.shadow.count, 0u);  // the quick-look scene has an area light
   EXPECT_GT(r.total.mrays_per_second, 0.0);
+  EXPECT_GT(r.mrays_per_cpu_second, 0.0);
   EXPECT_NEAR(r.total.mrays_per_second,
               r.primary.mrays_per_second + r.shadow.mrays_per_second + r.indirect.mrays_per_second, 1e-9);
   EXPECT_GT(r.ray_query_share, 0.0);
@@ -84,6 +85,7 @@ TEST(Profile, JsonHasEveryKey) {
     EXPECT_TRUE(j["rays"][kind]["count"].is_number_unsigned()) << kind;
     EXPECT_TRUE(j["rays"][kind]["mrays_per_second"].is_number()) << kind;
   }
+  EXPECT_GT(j["rays"]["mrays_per_cpu_second"].get<double>(), 0.0);
   EXPECT_NEAR(j["time_share"]["ray_queries"].get<double>() + j["time_share"]["shading_and_sampling"].get<double>(),
               1.0, 1e-12);
   for (const char* k : {"peak_rss_bytes", "baseline_rss_bytes", "bytes_per_triangle", "net_bytes_per_triangle",
