@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/profile.h"
 
 int main(int argc, char** argv) {
   using namespace kiln;
@@ -35,6 +36,11 @@ int main(int argc, char** argv) {
                      "Render only sample indices FIRST:LAST (LAST exclusive) of the frame; seeds follow the absolute "
                      "index, so parts from `kiln merge` equal a single run");
   render->add_option("--aov", ra.aovs, "Extra EXR layers: albedo,normal,depth,position,variance (or all)");
+  render->add_option("--time-limit", ra.time_limit,
+                     "Render in waves of doubling spp until the next wave would exceed this many seconds (--spp caps it)");
+  render->add_option("--reference", ra.reference,
+                     "Reference EXR: after every doubling of spp write spp,seconds,mse,relmse,rmse to "
+                     "<image>.convergence.csv; final figures go into the EXR metadata and --stats");
   render->add_flag("--physical-lights", ra.physical_lights,
                    "Use exact estimators where the course references follow other conventions (README)");
   render->add_flag("--all-features", ra.all_features, "Render with every feature code path enabled (to measure the mask's gain)")
@@ -54,6 +60,32 @@ int main(int argc, char** argv) {
   compare->add_option("reference", cmp_ref, "Reference EXR")->required();
   compare->add_option("--block", cmp_block, "Block size in pixels for the block statistics")->capture_default_str();
 
+  ProfileArgs pa;
+  std::string profile_accel = "embree";
+  auto* profile = app.add_subcommand("profile", "Time and measure the phases of a render (parse, subdivision, "
+                                                "build, render), rays per second and peak memory");
+  profile->add_option("scene", pa.scene, "Scene file (.xml, .json) or bare mesh (.ply, .obj)")->required();
+  profile->add_option("--subdivide", pa.subdivide, "Loop-subdivide the scene's meshes this many times (default: "
+                                                  "the scene's own setting)");
+  profile->add_option("--accel", profile_accel, "Ray-query backend: embree or bvh")
+      ->check(CLI::IsMember({"embree", "bvh"}))->capture_default_str();
+  profile->add_option("--spp", pa.spp, "Samples per pixel for the timed render")->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  profile->add_option("--camera", pa.camera, "Profile the camera with this id (default: the first)");
+  profile->add_option("--threads", pa.threads, "Worker threads (0: all cores)")->capture_default_str();
+  profile->add_option("--seed", pa.seed, "Random seed")->capture_default_str();
+  profile->add_flag("--no-render", pa.no_render, "Stop after building the accelerator");
+  profile->add_flag("--json", pa.json, "Print the measurements as JSON instead of a table");
+
+  std::string cb_scene;
+  size_t cb_rays = 100000;
+  uint64_t cb_seed = 1;
+  auto* check = app.add_subcommand("check-bvh", "Compare the in-house BVH with Embree ray by ray (JSON summary; "
+                                                "exit 1 when disagreements exceed 1e-5 of the rays)");
+  check->add_option("scene", cb_scene, "Scene file")->required();
+  check->add_option("--rays", cb_rays, "Camera rays (each adds a bounce and a shadow ray)")->capture_default_str();
+  check->add_option("--seed", cb_seed, "Random seed")->capture_default_str();
+
   std::vector<std::string> merge_parts;
   std::string merge_out;
   auto* merge = app.add_subcommand("merge", "Combine partial renders (--crop / --spp-range parts) into one EXR");
@@ -69,6 +101,9 @@ int main(int argc, char** argv) {
   ra.accel = accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*render) return run_guarded([&] { return cmd_render(ra); });
   if (*info) return run_guarded([&] { return cmd_info(info_scene, info_subdivide); });
+  pa.accel = profile_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
+  if (*profile) return run_guarded([&] { return cmd_profile(pa); });
+  if (*check) return run_guarded([&] { return cmd_check_bvh(cb_scene, cb_rays, cb_seed); });
   if (*merge) return run_guarded([&] { return cmd_merge(merge_parts, merge_out); });
   if (*compare) return run_guarded([&] { return cmd_compare(cmp_image, cmp_ref, cmp_block); });
   return kExitBadInput;

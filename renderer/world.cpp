@@ -8,10 +8,21 @@
 namespace kiln {
 namespace {
 
+// One spare element of capacity lets Embree share the array instead of copying it (its SIMD loads may read
+// past the last element).
+template <typename T>
+std::vector<T> with_spare_capacity(const std::vector<T>& v) {
+  std::vector<T> out;
+  out.reserve(v.size() + 1);
+  out.assign(v.begin(), v.end());
+  return out;
+}
+
 std::vector<Vec3f> transformed_points(const std::vector<Vec3f>& p, const Transform& t) {
-  if (t.is_identity()) return p;
-  std::vector<Vec3f> out(p.size());
-  for (size_t i = 0; i < p.size(); ++i) out[i] = t.point(p[i]);
+  if (t.is_identity()) return with_spare_capacity(p);
+  std::vector<Vec3f> out;
+  out.reserve(p.size() + 1);
+  for (const Vec3f& v : p) out.push_back(t.point(v));
   return out;
 }
 
@@ -77,11 +88,11 @@ std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& o
     const MeshDesc& m = scene.meshes[i];
     if (m.is_instance_base) {
       prototype_of[i] = int(g.prototypes.size());
-      g.prototypes.push_back(TriangleMesh{m.positions, m.indices});
+      g.prototypes.push_back(TriangleMesh{with_spare_capacity(m.positions), with_spare_capacity(m.indices)});
     }
     if (!m.visible || m.indices.empty()) continue;
     check_material(scene, m.material, m.name, m.emission.has_value());
-    TriangleMesh tm{transformed_points(m.positions, m.to_world), m.indices};
+    TriangleMesh tm{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
     ShapeData sd;
     sd.material = m.material;
     sd.smooth = m.smooth || !m.normals.empty();

@@ -134,7 +134,8 @@ json parse_file(const std::string& path) {
   const std::string text = read_file_bytes(path);
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range.406 for a number literal that overflows a double ("1E400").
     // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep "parse error at line L, column C: ...".
     std::string what = e.what();
     if (auto pos = what.find("] "); what.rfind("[json.exception", 0) == 0 && pos != std::string::npos)
@@ -157,6 +158,7 @@ void read_camera(ConfigReader& r, const json& root, SceneDesc& scene, const std:
   if (vfov >= 180.0f) r.fail(join(cam_path, "vertical_fov"), "must be below 180 degrees");
 
   const Vec3f forward = look_at - c.position;
+  if (!is_finite(forward)) r.fail(join(cam_path, "look_at"), "look_at - position overflows single precision");
   if (length_squared(forward) == 0.0f) r.fail(join(cam_path, "look_at"), "equals cam_config.position");
   if (length_squared(ref_up) == 0.0f ||
       length(cross(normalize(forward), normalize(ref_up))) < kMinUpViewSine)
@@ -243,6 +245,8 @@ void read_objects(ConfigReader& r, const json& root, SceneDesc& scene, const std
     const std::string material = r.string(r.require(o, path, "material_name"), material_key);
     const Vec3f translate = r.vec3(r.require(o, path, "translate"), join(path, "translate"));
     const float scale = r.positive(r.require(o, path, "scale"), join(path, "scale"));
+    if (!std::isfinite(1.0f / scale))
+      r.fail(join(path, "scale"), "is too small: its inverse overflows single precision");
     r.boolean(r.require(o, path, "has_bvh"), join(path, "has_bvh"));  // acceleration hint only
 
     auto mat = materials.find(material);
@@ -290,6 +294,8 @@ void read_light(ConfigReader& r, const json& root, SceneDesc& scene, int black_m
   quad.name = light_path;
   quad.positions = {centre + Vec3f(-hx, 0, -hz), centre + Vec3f(hx, 0, -hz), centre + Vec3f(hx, 0, hz),
                     centre + Vec3f(-hx, 0, hz)};
+  for (const Vec3f& p : quad.positions)
+    if (!is_finite(p)) r.fail(light_path, "a corner (position +- size / 2) overflows single precision");
   quad.indices = {0, 1, 2, 0, 2, 3};  // (v1-v0)x(v2-v0) = (0, -4 hx hz, 0): facing down
   quad.material = black_material;
   quad.emission = radiance;

@@ -33,9 +33,17 @@ SceneDesc load_scene(const std::string& path, const LoadOptions& options) {
   } else {
     throw Error(path, "", "unknown scene format '" + ext + "' (expected .xml, .json, .ply or .obj)");
   }
-  if (options.subdivide >= 0)
-    for (MeshDesc& m : scene.meshes) m.subdivide = options.subdivide;
-  apply_subdivision(scene);
+  if (options.subdivide > kMaxSubdivisionLevels)
+    throw Error("--subdivide", "", "at most " + std::to_string(kMaxSubdivisionLevels) + " levels");
+  if (options.subdivide >= 0) {
+    // --subdivide overrides the level of the meshes the scene marks for subdivision; a scene that marks none
+    // (or a bare PLY/OBJ) has all its meshes subdivided.
+    bool any_marked = false;
+    for (const MeshDesc& m : scene.meshes) any_marked |= m.subdivide > 0;
+    for (MeshDesc& m : scene.meshes)
+      if (!any_marked || m.subdivide > 0) m.subdivide = options.subdivide;
+  }
+  if (!options.defer_subdivision) apply_subdivision(scene);
   return scene;
 }
 

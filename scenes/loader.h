@@ -8,7 +8,10 @@
 namespace kiln {
 
 struct LoadOptions {
-  int subdivide = -1;  // Loop subdivision levels applied to every mesh; < 0: the scene's own setting
+  // Loop subdivision levels for the meshes the scene marks (all meshes when it marks none); < 0: the scene's own.
+  int subdivide = -1;
+  // Leave MeshDesc::subdivide set but do not subdivide yet (kiln profile times subdivision on its own).
+  bool defer_subdivision = false;
 };
 
 // Throws kiln::Error naming the file, element or line, and what is wrong.

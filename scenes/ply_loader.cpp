@@ -537,8 +537,11 @@ void parse_ascii(std::string_view data, const PlyHeader& h, const Ctx& ctx, Mesh
   std::vector<double> values;
   std::vector<int64_t> poly;
   for (const auto& e : h.elements) {
+    // A record without properties has no text: nothing to read, whatever the count (looping over a count of
+    // 9e18 empty records would hang).
+    if (e.props.empty()) continue;
     // Every value takes at least one character plus a separator: bounds the count before reserving memory.
-    if (!e.props.empty() && e.count > (cur.remaining() + 1) / (2 * e.props.size()))
+    if (e.count > (cur.remaining() + 1) / (2 * e.props.size()))
       ctx.fail("element '" + e.name + "'", "file is truncated (" + std::to_string(e.count) + " records declared)");
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
     VertexLayout l;

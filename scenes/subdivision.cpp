@@ -493,8 +493,8 @@ MeshDesc loop_subdivide(const MeshDesc& mesh, int levels) {
   if (levels <= 0) return mesh;
   check_input(mesh, levels);
   const bool uv = mesh.uvs.size() == mesh.positions.size() && !mesh.uvs.empty();
-  Level cur = refine(MeshView{mesh.positions, mesh.indices, uv ? std::span<const Vec2f>(mesh.uvs) : std::span<const Vec2f>{}},
-                     levels == 1);
+  const MeshView base{mesh.positions, mesh.indices, uv ? std::span<const Vec2f>(mesh.uvs) : std::span<const Vec2f>{}};
+  Level cur = refine(base, levels == 1);
   for (int l = 1; l < levels; ++l) cur = refine(cur.view(), l + 1 == levels);
 
   // Every field but the geometry is carried over.

@@ -1,6 +1,7 @@
 #include "scenes/xml_loader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -61,6 +62,16 @@ float le_f32(const char* p) {
   float f;
   std::memcpy(&f, &u, sizeof f);
   return f;
+}
+
+// False when the matrix or its inverse overflowed single precision (a denormal scale factor, a product of large
+// factors): every point it maps would be inf or NaN.
+bool transform_is_finite(const Transform& t) {
+  for (const Mat4* m : {&t.matrix(), &t.inverse_matrix()})
+    for (const auto& row : m->m)
+      for (float x : row)
+        if (!std::isfinite(x)) return false;
+  return true;
 }
 
 class XmlLoader {
@@ -314,6 +325,7 @@ class XmlLoader {
       } catch (const Error& e) {
         fail(c, e.what());
       }
+      if (!transform_is_finite(t)) fail(c, "transformation or its inverse overflows single precision");
       if (!xforms_[kind].emplace(id, t).second)
         fail(c, "duplicate " + std::string(c.name()) + " id " + std::to_string(id));
     }
@@ -337,6 +349,7 @@ class XmlLoader {
                     " id=" + std::to_string(*id) + ", which is not defined");
       m = it->second * m;
     }
+    if (!transform_is_finite(m)) fail(n, "the composed transformation overflows single precision");
     return m;
   }
 
@@ -469,6 +482,7 @@ class XmlLoader {
     if (gaze && gaze_point) fail(c, "has both <Gaze> and <GazePoint>");
     if (!gaze && !gaze_point) fail(c, "missing <Gaze> (or <GazePoint>)");
     cam.gaze = gaze ? get_vec3(gaze) : get_vec3(gaze_point) - cam.position;
+    if (!is_finite(cam.gaze)) fail(gaze_point, "GazePoint - Position overflows single precision");
     if (length_squared(cam.gaze) == 0.0f) fail(gaze ? gaze : gaze_point, "gaze direction is zero");
     Node up = req_child(c, "Up");
     cam.up = get_vec3(up);
@@ -651,15 +665,16 @@ class XmlLoader {
     Node normal = opt_child(l, "Normal"), e1 = opt_child(l, "EdgeVector1");
     if (normal && e1) fail(l, "has both <Normal> and <EdgeVector1>");
     if (normal) {
-      a.normal = normalize(nonzero(normal, get_vec3(normal)));
+      a.normal = unit(normal, get_vec3(normal));
       Node size = req_child(l, "Size");
       a.size = positive(size, get_float(size), "Size");
     } else if (e1) {
       const Vec3f u = get_vec3(e1), v = get_vec3(req_child(l, "EdgeVector2"));
       const Vec3f n = cross(u, v);
       if (length_squared(n) == 0.0f) fail(l, "EdgeVector1 and EdgeVector2 are parallel or zero");
+      if (!is_finite(n)) fail(l, "EdgeVector1 x EdgeVector2 overflows single precision");
       a.edges = std::array<Vec3f, 2>{u, v};
-      a.normal = normalize(n);
+      a.normal = unit(l, n);
     } else {
       fail(l, "missing <Normal> and <Size> (or <EdgeVector1> and <EdgeVector2>)");
     }
@@ -674,6 +689,13 @@ class XmlLoader {
   Vec3f nonzero(Node n, Vec3f v) const {
     if (length_squared(v) == 0.0f) fail(n, "vector must not be zero");
     return v;
+  }
+  // Unit vector along a non-zero v, scaled by its largest component first so that |v|^2 neither overflows
+  // (a 1e30 vector would normalise to zero) nor underflows.
+  Vec3f unit(Node n, Vec3f v) const {
+    const float largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (largest == 0.0f) fail(n, "vector must not be zero");
+    return normalize(v / largest);
   }
   float cone_angle(Node n) const {
     const float a = get_float(n);
@@ -740,6 +762,10 @@ class XmlLoader {
     m.material = material_ref(c, !light);
     m.to_world = object_transform(c);
     m.smooth = shading_mode(c).value_or(false);
+    // Kiln extension: <Mesh subdivide="N"> Loop-subdivides the mesh N times after loading.
+    m.subdivide = int_attr(c, "subdivide", 0);
+    if (m.subdivide < 0 || m.subdivide > kMaxSubdivisionLevels)
+      fail(c, "subdivide must be 0.." + std::to_string(kMaxSubdivisionLevels) + ", got " + std::to_string(m.subdivide));
     if (light) m.emission = get_rgb(req_child(c, "Radiance"));
     read_faces(req_child(c, "Faces"), m);
     read_motion_blur(c);
@@ -798,6 +824,7 @@ class XmlLoader {
     base.is_instance_base = true;
     const Transform own = object_transform(c);
     inst.to_world = bool_attr(c, "resetTransform", false) ? own : own * base.to_world;
+    if (!transform_is_finite(inst.to_world)) fail(c, "the composed transformation overflows single precision");
     inst.material = material_ref(c, false);
     if (inst.material < 0) inst.material = base.material;
     inst.smooth = shading_mode(c);

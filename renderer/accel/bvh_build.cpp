@@ -1,15 +1,14 @@
 #include "renderer/accel/bvh_build.h"
 
+#include <immintrin.h>  // SSE2: part of the x86-64 baseline
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <bit>
-
-#include <immintrin.h>  // SSE2: part of the x86-64 baseline
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
 
 namespace kiln {
 namespace {
@@ -17,7 +16,7 @@ namespace {
 constexpr int kMinBins = 2;
 constexpr int kMaxBins = 32;
 constexpr int kMinSmallNodeBins = 4;
-constexpr uint32_t kDualBinThreshold = 256;  // smaller ranges bin into one set
+constexpr uint32_t kDualBinThreshold = 256;           // smaller ranges bin into one set
 constexpr uint32_t kParallelSubtreeThreshold = 4096;  // smaller subtrees are not worth a task
 constexpr uint32_t kParallelBinThreshold = 32768;     // nodes this large bin their primitives in parallel
 constexpr uint32_t kParallelBinGrain = 8192;
@@ -234,8 +233,8 @@ class Builder {
       // Mixed classes: separate them first (one class per side, recursively).
       const uint8_t c0 = cls_[prims_[begin].id()];
       Box lb, lcb, rb, rcb;
-      const uint32_t mid =
-          partition(begin, end, [&](const BuildPrim& p) { return cls_[p.id()] == c0; }, lb, lcb, rb, rcb);
+      const uint32_t mid = partition(
+          begin, end, [&](const BuildPrim& p) { return cls_[p.id()] == c0; }, lb, lcb, rb, rcb);
       if (mid != end) {
         const uint32_t c = next_.fetch_add(2, std::memory_order_relaxed);
         write_node(node, b, c, 0);
@@ -303,8 +302,8 @@ class Builder {
     Box lb, lcb, rb, rcb;
     if (best_axis >= 0 && (n > opt_.max_leaf_size || best_cost < cost_as_leaf)) {
       const int axis = best_axis, k = best_k;
-      mid = partition(begin, end, [&](const BuildPrim& p) { return map(p.centroid2(), axis) <= k; }, lb, lcb, rb,
-                      rcb);
+      mid = partition(
+          begin, end, [&](const BuildPrim& p) { return map(p.centroid2(), axis) <= k; }, lb, lcb, rb, rcb);
     } else if (n <= opt_.max_leaf_size) {
       return make_leaf(node, begin, end, b, depth);
     } else {

@@ -5,11 +5,11 @@
 // parallel with TBB and the top levels bin in parallel. The result is deterministic (independent of thread
 // timing): the tree is relaid out depth-first after the parallel build.
 #pragma once
+#include <tbb/cache_aligned_allocator.h>
+
 #include <cstdint>
 #include <span>
 #include <vector>
-
-#include <tbb/cache_aligned_allocator.h>
 
 #include "core/bounds.h"
 
@@ -21,7 +21,7 @@ struct BvhNode {
   Vec3f lo;
   uint32_t offset = 0;  // interior: index of the first child (the second is offset + 1); leaf: first primitive
   Vec3f hi;
-  uint32_t count = 0;   // number of primitives of a leaf; 0 for interior nodes
+  uint32_t count = 0;  // number of primitives of a leaf; 0 for interior nodes
   bool is_leaf() const { return count != 0; }
   Bounds3f bounds() const {
     Bounds3f b;  // not Bounds3f(lo, hi), which would turn an empty box inside out
@@ -35,11 +35,11 @@ static_assert(sizeof(BvhNode) == 32);
 inline constexpr uint32_t kBvhRoot = 0;
 
 struct BvhBuildOptions {
-  int bins_per_axis = 16;           // clamped to [2, 32]
-  uint32_t max_leaf_size = 8;       // a leaf never holds more unless its primitives cannot be separated
-  uint32_t leaf_block = 1;          // primitives tested together (SIMD width): a leaf costs ceil(n / leaf_block)
-  float traversal_cost = 1.0f;      // SAH cost of visiting an interior node ...
-  float intersection_cost = 1.0f;   // ... relative to intersecting one block of primitives
+  int bins_per_axis = 16;          // clamped to [2, 32]
+  uint32_t max_leaf_size = 8;      // a leaf never holds more unless its primitives cannot be separated
+  uint32_t leaf_block = 1;         // primitives tested together (SIMD width): a leaf costs ceil(n / leaf_block)
+  float traversal_cost = 1.0f;     // SAH cost of visiting an interior node ...
+  float intersection_cost = 1.0f;  // ... relative to intersecting one block of primitives
 };
 
 struct BvhBuildResult {

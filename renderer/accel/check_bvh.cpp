@@ -1,9 +1,9 @@
 #include "renderer/accel/check_bvh.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cstdio>
 #include <vector>
-
-#include <tbb/parallel_for.h>
 
 #include "core/frame.h"
 #include "core/sampling.h"
@@ -158,10 +158,10 @@ std::string CheckBvhReport::to_json() const {
   s += "  \"bvh\": {\"sah_cost\": " + num(bvh.sah_cost) + ", \"nodes\": " + std::to_string(bvh.nodes) +
        ", \"leaves\": " + std::to_string(bvh.leaves) + ", \"max_depth\": " + std::to_string(bvh.max_depth) +
        ", \"primitives\": " + std::to_string(bvh.primitives) + ", \"leaf_size_histogram\": [" + hist + "]},\n";
-  s += "  \"build_seconds\": {\"embree\": " + num(embree_stats.build_seconds) + ", \"bvh\": " +
-       num(bvh_stats.build_seconds) + "},\n";
-  s += "  \"bytes\": {\"embree\": " + std::to_string(embree_stats.bytes) + ", \"bvh\": " +
-       std::to_string(bvh_stats.bytes) + "},\n";
+  s += "  \"build_seconds\": {\"embree\": " + num(embree_stats.build_seconds) +
+       ", \"bvh\": " + num(bvh_stats.build_seconds) + "},\n";
+  s += "  \"bytes\": {\"embree\": " + std::to_string(embree_stats.bytes) +
+       ", \"bvh\": " + std::to_string(bvh_stats.bytes) + "},\n";
   s += "  \"first_disagreement\": \"" + json_escape(first_disagreement) + "\"\n";
   s += "}\n";
   return s;

@@ -110,7 +110,8 @@ struct EmbreeAccel::Impl {
   void check(const char* what) {
     const RTCError e = rtcGetDeviceError(device);
     if (e != RTC_ERROR_NONE)
-      throw Error(std::string("Embree: ") + what + " failed: " + (last_error.empty() ? "error code " + std::to_string(int(e)) : last_error));
+      throw Error(std::string("Embree: ") + what +
+                  " failed: " + (last_error.empty() ? "error code " + std::to_string(int(e)) : last_error));
   }
 
   RTCGeometry triangle_geometry(const TriangleMesh& m) {
@@ -144,7 +145,9 @@ struct EmbreeAccel::Impl {
   void build() {
     const auto start = std::chrono::steady_clock::now();
     device = rtcNewDevice(nullptr);
-    if (!device) throw Error("Embree: cannot create a device (error code " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    if (!device)
+      throw Error("Embree: cannot create a device (error code " + std::to_string(int(rtcGetDeviceError(nullptr))) +
+                  ")");
     rtcSetDeviceErrorFunction(device, error_cb, &last_error);
     rtcSetDeviceMemoryMonitorFunction(
         device,

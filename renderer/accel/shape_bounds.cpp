@@ -26,9 +26,12 @@ Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst)
 
 Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s) {
   switch (s.kind) {
-    case ShapeKind::Mesh: return mesh_bounds(g.meshes[s.index]);
-    case ShapeKind::Sphere: return sphere_world_bounds(g.spheres[s.index]);
-    case ShapeKind::Instance: return instance_world_bounds(g, g.instances[s.index]);
+    case ShapeKind::Mesh:
+      return mesh_bounds(g.meshes[s.index]);
+    case ShapeKind::Sphere:
+      return sphere_world_bounds(g.spheres[s.index]);
+    case ShapeKind::Instance:
+      return instance_world_bounds(g, g.instances[s.index]);
   }
   return {};
 }

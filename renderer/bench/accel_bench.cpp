@@ -4,7 +4,6 @@
 // Arg = Loop subdivision levels (0 = the control mesh). Falls back to a generated icosphere when the shared
 // killeroo file is absent.
 #include <benchmark/benchmark.h>
-
 #include <sys/resource.h>
 
 #include <cstdlib>
@@ -23,11 +22,10 @@
 #include "scenes/ply_loader.h"
 #include "scenes/subdivision.h"
 
-
 namespace kiln {
 namespace {
 
-constexpr int kImageSide = 256;  // primary rays per pass = kImageSide^2
+constexpr int kImageSide = 256;          // primary rays per pass = kImageSide^2
 constexpr float kCameraDistance = 0.6f;  // times the scene diagonal: the mesh fills most of the 53-degree view
 
 MeshDesc icosphere_desc(int levels) {
@@ -170,7 +168,11 @@ void trace_args(benchmark::internal::Benchmark* b) {
     for (int kind : {0, 1, 2}) b->Args({level, kind});
 }
 
-BENCHMARK(BM_AccelBuild<false>)->Name("AccelBuild/embree")->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AccelBuild<false>)
+    ->Name("AccelBuild/embree")
+    ->DenseRange(0, 3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_AccelBuild<true>)->Name("AccelBuild/bvh")->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AccelTrace<false>)->Name("AccelTrace/embree")->Apply(trace_args)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AccelTrace<true>)->Name("AccelTrace/bvh")->Apply(trace_args)->Unit(benchmark::kMillisecond);

@@ -42,6 +42,10 @@ int cmd_info(const std::string& scene_path, int subdivide);
 // Prints block-luminance statistics and MSE / relMSE of image against reference (both EXR) as JSON.
 int cmd_compare(const std::string& image, const std::string& reference, int block);
 
+// Shoots camera, bounce and shadow rays through Embree and the in-house BVH and compares them ray by ray; prints
+// a JSON summary and returns 1 when disagreements exceed the budget.
+int cmd_check_bvh(const std::string& scene_path, size_t rays, uint64_t seed);
+
 // Merges partial renders into one EXR (see renderer/merge.h).
 int cmd_merge(const std::vector<std::string>& parts, const std::string& output);
 

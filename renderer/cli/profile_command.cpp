@@ -110,23 +110,14 @@ size_t world_geometry_bytes(const WorldGeometry& g) {
   return b;
 }
 
-bool is_xml(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".xml";
-}
 
-// Loads without subdividing, so that subdivision is timed on its own: --subdivide N replaces every mesh's level
-// (as `kiln render --subdivide` does); otherwise the XML's per-mesh levels are kept for the next phase.
+// Loads without subdividing, so that subdivision is timed on its own; --subdivide N overrides the levels exactly
+// as `kiln render --subdivide` does (scenes/loader.h).
 SceneDesc load_unsubdivided(const ProfileArgs& args) {
-  if (args.subdivide < 0 && is_xml(args.scene) && std::filesystem::is_regular_file(args.scene))
-    return load_ceng795_xml(args.scene);
   LoadOptions lo;
-  lo.subdivide = args.subdivide < 0 ? -1 : 0;
-  SceneDesc s = load_scene(args.scene, lo);
-  if (args.subdivide >= 0)
-    for (MeshDesc& m : s.meshes) m.subdivide = args.subdivide;
-  return s;
+  lo.subdivide = args.subdivide;
+  lo.defer_subdivision = true;
+  return load_scene(args.scene, lo);
 }
 
 RayKindStats ray_kind(uint64_t count, double seconds) {
@@ -234,7 +225,9 @@ ProfileReport run_profile(const ProfileArgs& args) {
 }
 
 std::string profile_json(const ProfileReport& r) {
-  auto kind = [](const RayKindStats& k) { return nlohmann::json{{"count", k.count}, {"mrays_per_second", k.mrays_per_second}}; };
+  auto kind = [](const RayKindStats& k) {
+    return nlohmann::json{{"count", k.count}, {"mrays_per_second", k.mrays_per_second}};
+  };
   nlohmann::json j;
   j["scene"] = r.scene;
   j["subdivide"] = r.subdivide >= 0 ? nlohmann::json(r.subdivide) : nlohmann::json("scene");

@@ -14,6 +14,7 @@
 #include "renderer/aov.h"
 #include "renderer/cli/commands.h"
 #include "renderer/merge.h"
+#include "renderer/progressive.h"
 #include "renderer/image_io.h"
 #include "renderer/tonemap.h"
 #include "renderer/world.h"
@@ -217,7 +218,35 @@ int cmd_render(const RenderArgs& args) {
     if (!args.quiet)
       std::fprintf(stderr, "kiln: camera %s: %dx%d, %u spp, %s\n", cd->id.c_str(), camera.width(), camera.height(), spp,
                    settings.describe().c_str());
-    const RenderStats rs = render_samples(*world, camera, settings, ro, first, last, film);
+    RenderStats rs;
+    std::optional<ErrorStats> final_error;
+    std::string csv_path;
+    if (args.time_limit || args.reference) {
+      // Waves of doubling spp: error against the reference after each, and/or stop before the budget runs out.
+      if (args.spp_range || args.crop) throw Error("--time-limit/--reference", "", "cannot be combined with --crop or --spp-range");
+      Image reference;
+      ProgressiveOptions po;
+      po.time_limit_seconds = args.time_limit;
+      if (args.reference) {
+        reference = read_exr(*args.reference).rgb;
+        po.reference = &reference;
+      }
+      std::string csv = wave_csv_header();
+      po.on_wave = [&](const WaveReport& w) { csv += wave_csv_line(w); };
+      const ProgressiveResult pr = render_progressive(*world, camera, settings, ro, spp, po, film);
+      rs = pr.stats;
+      last = pr.spp;
+      final_error = pr.final_error;
+      if (args.reference) {
+        csv_path = (std::filesystem::path(args.out_dir) / (stem_of(cd->image_name, "camera" + cd->id) + ".convergence.csv")).string();
+        std::filesystem::create_directories(args.out_dir);
+        std::ofstream(csv_path) << csv;
+      }
+      if (!args.quiet && pr.stopped_by_time_limit)
+        std::fprintf(stderr, "kiln: time limit reached after %u spp\n", pr.spp);
+    } else {
+      rs = render_samples(*world, camera, settings, ro, first, last, film);
+    }
     interrupted = rs.cancelled;
 
     const std::string stem = stem_of(cd->image_name, "camera" + cd->id);
@@ -240,6 +269,12 @@ int cmd_render(const RenderArgs& args) {
                      {"kiln:integrator", settings.describe()},
                      {"kiln:render_seconds", std::to_string(rs.seconds)},
                      {"kiln:incomplete", rs.cancelled ? "true" : "false"}};
+    if (final_error) {
+      meta.emplace_back("kiln:reference", *args.reference);
+      meta.emplace_back("kiln:mse", std::to_string(final_error->mse));
+      meta.emplace_back("kiln:relmse", std::to_string(final_error->rel_mse));
+      meta.emplace_back("kiln:rmse", std::to_string(final_error->rmse));
+    }
     write_exr(exr, img, aovs, meta, window);
     write_png(png, to_ldr(img, preview_for_camera(*cd, scene)), img.width(), img.height());
 
@@ -273,6 +308,9 @@ int cmd_render(const RenderArgs& args) {
                                 {"ray_query_share", query_share},
                                 {"nan_samples", rs.rays.nan_samples},
                                 {"incomplete", rs.cancelled}};
+    if (final_error)
+      cam["error"] = {{"reference", *args.reference}, {"mse", final_error->mse}, {"relmse", final_error->rel_mse},
+                      {"rmse", final_error->rmse}, {"csv", csv_path}};
     stats["cameras"].push_back(cam);
     if (interrupted) break;
   }

@@ -2,8 +2,10 @@
 // the regression test that replays the corpora and the saved crashes in the normal suite
 // (tests/scenes/fuzz_regression_test.cpp), so both exercise exactly the same code.
 //
-// The contract under test: a loader either returns or throws kiln::Error. Any other exception escapes (and aborts
-// the fuzzer as an uncaught exception); crashes, leaks and sanitizer reports are the sanitizers' business.
+// The contract under test: a loader either throws kiln::Error, or returns a description the renderer can use
+// as-is: every index in range, every number finite (check_mesh / check_scene; a violation throws
+// InvariantViolation). Any exception other than kiln::Error escapes, and aborts the fuzzer as an uncaught
+// exception; crashes, leaks and sanitizer reports are the sanitizers' business.
 //
 // PLY and OBJ have in-memory entry points. The XML and JSON loaders only take a path, so the input is written to
 // `scratch/input.xml` (`.json`) first. The scratch folder also holds small fixture files with fixed names that the
@@ -11,6 +13,7 @@
 // mutated scenes reach the code behind a successful reference and not only the "cannot open" error.
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -99,27 +102,107 @@ inline void write_fixtures(const std::filesystem::path& dir) {
   write_bytes(dir / "faces.bin", little_endian_block<int32_t>(1, {1, 2, 3}));
 }
 
-// Feeds `data` to the loader. Returns true when it loaded, false when it threw kiln::Error (bad input, expected);
-// anything else propagates. `scratch` must hold the fixtures (write_fixtures) for XML and JSON.
+// A loader returned a description that breaks the SceneDesc contract (a finding, like a crash).
+class InvariantViolation : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+inline void require(bool ok, const std::string& what) {
+  if (!ok) throw InvariantViolation("loader accepted the input but " + what);
+}
+
+inline bool finite(float x) { return std::isfinite(x); }
+inline bool finite(Vec3f v) { return is_finite(v); }
+inline bool finite(Vec2f v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+inline bool finite(const Rgb& c) { return c.is_finite(); }
+inline bool finite(const Mat4& m) {
+  for (const auto& row : m.m)
+    for (float x : row)
+      if (!std::isfinite(x)) return false;
+  return true;
+}
+inline bool finite(const Transform& t) { return finite(t.matrix()) && finite(t.inverse_matrix()); }
+template <typename T>
+bool all_finite(const std::vector<T>& v) {
+  for (const auto& x : v)
+    if (!finite(x)) return false;
+  return true;
+}
+
+// Loaders normalise area-light normals; float rounding leaves them within a few ulps of unit length.
+inline constexpr float kUnitTolerance = 1e-4f;
+
+inline void check_mesh(const MeshDesc& m) {
+  const std::string name = "mesh '" + m.name + "' ";
+  require(m.indices.size() % 3 == 0, name + "has an index count that is not a multiple of 3");
+  for (uint32_t i : m.indices) require(i < m.positions.size(), name + "has an index out of range");
+  require(m.normals.empty() || m.normals.size() == m.positions.size(), name + "has a normal count mismatch");
+  require(m.uvs.empty() || m.uvs.size() == m.positions.size(), name + "has a uv count mismatch");
+  require(all_finite(m.positions) && all_finite(m.normals) && all_finite(m.uvs), name + "has non-finite data");
+  require(finite(m.to_world), name + "has a non-finite transform");
+  require(!m.emission || finite(*m.emission), name + "has a non-finite emission");
+}
+
+inline void check_scene(const SceneDesc& s) {
+  const auto material_ok = [&](int m) { return m >= -1 && m < int(s.materials.size()); };
+  for (const auto& m : s.meshes) {
+    check_mesh(m);
+    require(material_ok(m.material), "mesh '" + m.name + "' has a material index out of range");
+  }
+  for (const auto& sp : s.spheres) {
+    require(material_ok(sp.material), "sphere '" + sp.name + "' has a material index out of range");
+    require(finite(sp.center) && finite(sp.radius) && sp.radius > 0 && finite(sp.to_world),
+            "sphere '" + sp.name + "' has a non-finite or non-positive centre, radius or transform");
+  }
+  for (const auto& in : s.instances) {
+    require(in.base_mesh >= 0 && in.base_mesh < int(s.meshes.size()), "instance '" + in.name + "' has a bad base");
+    require(material_ok(in.material), "instance '" + in.name + "' has a material index out of range");
+    require(finite(in.to_world), "instance '" + in.name + "' has a non-finite transform");
+  }
+  for (const auto& m : s.materials)
+    require(!m.brdf || (*m.brdf >= 0 && *m.brdf < int(s.brdfs.size())), "a material has a BRDF index out of range");
+  for (const auto& c : s.cameras) {
+    require(c.width > 0 && c.height > 0 && c.num_samples > 0, "camera '" + c.id + "' has an empty image");
+    require(finite(c.position) && finite(c.gaze) && finite(c.up) && finite(c.fov_y_deg) && finite(c.near_distance),
+            "camera '" + c.id + "' has a non-finite position, direction or field of view");
+    for (float x : c.near_plane) require(finite(x), "camera '" + c.id + "' has a non-finite near plane");
+  }
+  for (const auto& l : s.point_lights)
+    require(finite(l.position) && finite(l.intensity), "a point light is non-finite");
+  for (const auto& l : s.directional_lights)
+    require(finite(l.direction) && finite(l.radiance), "a directional light is non-finite");
+  for (const auto& l : s.spot_lights)
+    require(finite(l.position) && finite(l.direction) && finite(l.intensity), "a spot light is non-finite");
+  for (const auto& l : s.area_lights)
+    require(finite(l.position) && finite(l.normal) && finite(l.size) && finite(l.radiance) &&
+                (!l.edges || (finite((*l.edges)[0]) && finite((*l.edges)[1]))),
+            "an area light is non-finite");
+    require(std::abs(length(l.normal) - 1.0f) < kUnitTolerance, "an area light normal is not a unit vector");
+}
+
+// Feeds `data` to the loader. Returns true when it loaded (and the result passed the checks), false when it threw
+// kiln::Error (bad input, expected); InvariantViolation and anything else propagate. `scratch` must hold the
+// fixtures (write_fixtures) for XML and JSON.
 inline bool run_loader(Loader loader, std::string_view data, const std::filesystem::path& scratch) {
   try {
     switch (loader) {
       case Loader::Ply:
-        parse_ply(data, "fuzz.ply");
+        check_mesh(parse_ply(data, "fuzz.ply"));
         break;
       case Loader::Obj:
-        parse_obj(std::string(data), "fuzz.obj");
+        check_mesh(parse_obj(std::string(data), "fuzz.obj"));
         break;
       case Loader::Xml: {
         const auto path = scratch / "input.xml";
         write_bytes(path, data);
-        load_ceng795_xml(path.string());
+        check_scene(load_ceng795_xml(path.string()));
         break;
       }
       case Loader::Json: {
         const auto path = scratch / "input.json";
         write_bytes(path, data);
-        load_cs171_json(path.string());
+        check_scene(load_cs171_json(path.string()));
         break;
       }
     }

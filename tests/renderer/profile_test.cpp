@@ -52,7 +52,8 @@ TEST(Profile, ReportIsConsistent) {
               r.primary.mrays_per_second + r.shadow.mrays_per_second + r.indirect.mrays_per_second, 1e-9);
   EXPECT_GT(r.ray_query_share, 0.0);
   EXPECT_LE(r.ray_query_share, 1.0);
-  for (double s : {r.parse_seconds, r.subdivision_seconds, r.world_build_seconds, r.accel_build_seconds, r.render_seconds})
+  for (double s :
+       {r.parse_seconds, r.subdivision_seconds, r.world_build_seconds, r.accel_build_seconds, r.render_seconds})
     EXPECT_GE(s, 0.0);
   EXPECT_GE(r.total_seconds, r.load_subdivision_build_seconds());
   EXPECT_GT(r.render_cpu_seconds, 0.0);

@@ -13,8 +13,9 @@ constexpr int kResolution = 48;
 constexpr uint32_t kSpp = 16;
 constexpr int kBlock = 8;
 // Same seed at every scale: the renders draw the same random numbers and should differ only where a path
-// diverges through rounding. Independent renders of this scene differ by ~6% per 8x8 block (p95) at this spp;
-// the tolerances are several times tighter, so a scale-dependent bias or leak cannot hide in the noise.
+// diverges through rounding. Independent renders of this scene differ per 8x8 block by ~23% (p95) and ~4%
+// (median) at this spp, renders at scale 1e4 by 6e-5 and 4e-6: the tolerances sit ~10x below the noise, so a
+// scale-dependent bias or leak cannot hide in it.
 constexpr double kMaxBlockP95 = 0.02;
 constexpr double kMaxBlockMedian = 0.005;
 constexpr double kMaxMeanRatioError = 0.005;
@@ -39,6 +40,9 @@ class Scale : public ::testing::TestWithParam<std::tuple<AccelKind, float>> {};
 
 // Why: the same Cornell box at 1e-4, 1 and 1e4 units must render the same image (block means within tight
 // tolerances, no NaN), for both accelerators.
+// Known failure at 1e-4 (reported to the lead): core/ray.h offsets points with |coordinate| < 1/32 by the fixed
+// absolute kOffsetFloatScale = 1/65536, which is 15% of a box of half-size 1e-4, so bounce and shadow rays start
+// far off their surfaces (blocks differ by 49% at p95, the mean by 3%).
 TEST_P(Scale, ScaledBoxRendersTheSameImage) {
   const auto [accel, scale] = GetParam();
   const ScaledRender unit = render_at_scale(1.0f, accel);

@@ -64,7 +64,8 @@ MeshDesc grid(int n) {
     for (int i = 0; i <= n; ++i) p.push_back({float(i) / float(n), float(j) / float(n), 0.0f});
   auto at = [&](int i, int j) { return uint32_t(j * (n + 1) + i); };
   for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) idx.insert(idx.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    for (int i = 0; i < n; ++i)
+      idx.insert(idx.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
   return make_mesh(p, idx, "grid");
 }
 
@@ -191,7 +192,8 @@ TEST(LoopSubdivision, Valence3WeightsHandComputed) {
 // opposite vertices r_1, r_5 gives 3/8 (c + r_0) + 1/8 (r_1 + r_5).
 TEST(LoopSubdivision, Valence6AndBoundaryWeightsHandComputed) {
   std::vector<Vec3f> p{{0, 0, 1}};
-  for (int i = 0; i < 6; ++i) p.push_back({std::cos(radians(60.0f * float(i))), std::sin(radians(60.0f * float(i))), 0.1f * float(i)});
+  for (int i = 0; i < 6; ++i)
+    p.push_back({std::cos(radians(60.0f * float(i))), std::sin(radians(60.0f * float(i))), 0.1f * float(i)});
   std::vector<uint32_t> idx;
   for (uint32_t i = 0; i < 6; ++i) idx.insert(idx.end(), {0, 1 + i, 1 + (i + 1) % 6});
   const MeshDesc m = loop_subdivide(make_mesh(p, idx, "fan"), 1);

@@ -19,8 +19,8 @@ constexpr size_t kRays = 20000;
 // measured against a double-precision reference on the soup below: max error 9e-5); a real bug (swapped or
 // misassigned barycentrics) is off by O(1).
 constexpr float kBarycentricTolerance = 1e-3f;
-constexpr float kEdgeBand = 1e-3f;     // barycentric distance to an edge that counts as grazing a silhouette
-constexpr float kGrazingCos = 1e-2f;   // |cos| of a sphere hit that counts as grazing
+constexpr float kEdgeBand = 1e-3f;    // barycentric distance to an edge that counts as grazing a silhouette
+constexpr float kGrazingCos = 1e-2f;  // |cos| of a sphere hit that counts as grazing
 const Vec3f kFarCentre(148376.0f, 1234.0f, -223423.0f);
 
 struct Agreement {

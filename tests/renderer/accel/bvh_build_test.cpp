@@ -11,8 +11,8 @@ namespace kiln {
 namespace {
 
 bool contains(const Bounds3f& outer, const Bounds3f& inner) {
-  return outer.lo.x <= inner.lo.x && outer.lo.y <= inner.lo.y && outer.lo.z <= inner.lo.z &&
-         outer.hi.x >= inner.hi.x && outer.hi.y >= inner.hi.y && outer.hi.z >= inner.hi.z;
+  return outer.lo.x <= inner.lo.x && outer.lo.y <= inner.lo.y && outer.lo.z <= inner.lo.z && outer.hi.x >= inner.hi.x &&
+         outer.hi.y >= inner.hi.y && outer.hi.z >= inner.hi.z;
 }
 
 std::vector<Bounds3f> random_boxes(size_t n, uint64_t seed, float size) {
@@ -76,7 +76,8 @@ TEST(BvhBuild, SahBeatsLeafOnlyWhenWorthIt) {
   // Two far-apart clusters: the SAH must separate them at the root.
   std::vector<Bounds3f> prims;
   for (int i = 0; i < 4; ++i) prims.push_back(Bounds3f(Vec3f(float(i) * 0.01f), Vec3f(float(i) * 0.01f + 0.01f)));
-  for (int i = 0; i < 4; ++i) prims.push_back(Bounds3f(Vec3f(100.0f + float(i) * 0.01f), Vec3f(100.02f + float(i) * 0.01f)));
+  for (int i = 0; i < 4; ++i)
+    prims.push_back(Bounds3f(Vec3f(100.0f + float(i) * 0.01f), Vec3f(100.02f + float(i) * 0.01f)));
   const BvhBuildResult r = build_bvh(prims);
   ASSERT_FALSE(r.nodes[kBvhRoot].is_leaf());
   const BvhNode& a = r.nodes[r.nodes[kBvhRoot].offset];

@@ -1,6 +1,7 @@
 #include "renderer/accel/check_bvh.h"
 
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 
 #include "accel_test_util.h"
@@ -23,10 +24,12 @@ WorldGeometry check_scene() {
   Rng rng(8, 8);
   add_mesh(g, make_triangle_soup(3000, rng, Bounds3f(Vec3f(1, 0, -3), Vec3f(4, 3, 0)), 0.3f));
   add_sphere(g, Vec3f(2, 1, 2), 1.0f);
-  add_sphere(g, Vec3f(0, 0, 0), 1.0f, Transform::translate(Vec3f(-1, 0.5f, 3)) * Transform::scale(Vec3f(1.5f, 0.5f, 1)));
+  add_sphere(g, Vec3f(0, 0, 0), 1.0f,
+             Transform::translate(Vec3f(-1, 0.5f, 3)) * Transform::scale(Vec3f(1.5f, 0.5f, 1)));
   const uint32_t proto = add_prototype(g, make_icosphere(2));
   for (int i = 0; i < 5; ++i)
-    add_instance(g, proto, Transform::translate(Vec3f(float(i) * 2.0f - 4.0f, 0.5f, -5)) * Transform::scale(Vec3f(0.5f)));
+    add_instance(g, proto,
+                 Transform::translate(Vec3f(float(i) * 2.0f - 4.0f, 0.5f, -5)) * Transform::scale(Vec3f(0.5f)));
   return g;
 }
 

@@ -44,8 +44,7 @@ TEST(TriangleIntersect, WatertightOnSharedEdgesAndVertices) {
   std::vector<Vec3f> p;
   for (int y = 0; y <= kN; ++y)
     for (int x = 0; x <= kN; ++x)
-      p.push_back(rot.point(Vec3f(x + 0.3f * (rng.next_float() - 0.5f), y + 0.3f * (rng.next_float() - 0.5f),
-                                  0.0f)));
+      p.push_back(rot.point(Vec3f(x + 0.3f * (rng.next_float() - 0.5f), y + 0.3f * (rng.next_float() - 0.5f), 0.0f)));
   std::vector<uint32_t> idx;
   for (int y = 0; y < kN; ++y)
     for (int x = 0; x < kN; ++x) {
