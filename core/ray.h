@@ -15,24 +15,21 @@ struct Ray {
   Vec3f at(float t) const { return o + d * t; }
 };
 
-// Offsetting by a fixed epsilon breaks at large or tiny scene scales. Instead, move the origin by a fixed number
-// of ulps along the geometric normal (scale-invariant far from the origin), with an absolute nudge only near the
-// origin where ulps become denormal-small (after Waechter & Binder, Ray Tracing Gems ch. 6).
-inline constexpr float kOffsetOriginRegion = 1.0f / 32.0f;   // below this |coordinate| use the absolute nudge
-inline constexpr float kOffsetFloatScale = 1.0f / 65536.0f;  // absolute nudge near the origin
-inline constexpr float kOffsetIntScale = 256.0f;             // ulps moved along the normal elsewhere
+// Offsetting by a fixed epsilon breaks at large or tiny scene scales, and so does any absolute nudge. The error of a
+// computed hit point is a few ulps of its largest coordinate (it comes from vertices or a centre of that
+// magnitude), so the origin moves along the geometric normal by 256 ulps of that coordinate: scale-invariant from
+// 1e-8 to 1e8 (after Waechter & Binder, Ray Tracing Gems ch. 6, without their fixed nudge near the origin).
+inline constexpr float kOffsetRelative = 0x1p-15f;       // 256 ulps = 2^8 * 2^-23 of the largest coordinate
+inline constexpr float kOffsetMinMagnitude = 0x1p-100f;  // keeps the offset normal-range at the very origin
 
-inline float offset_component(float p, float n) {
-  const int32_t of = static_cast<int32_t>(kOffsetIntScale * n);
-  const int32_t bits = std::bit_cast<int32_t>(p);
-  const float pi = std::bit_cast<float>(bits + ((p < 0.0f) ? -of : of));
-  return std::abs(p) < kOffsetOriginRegion ? p + kOffsetFloatScale * n : pi;
-}
-
-// p: hit point; ng: geometric normal (any length is fine up to unit); w: direction the new ray leaves in.
+// p: hit point; ng: unit geometric normal; w: direction the new ray leaves in.
 inline Vec3f offset_ray_origin(Vec3f p, Vec3f ng, Vec3f w) {
   const Vec3f n = dot(ng, w) < 0.0f ? -ng : ng;
-  return {offset_component(p.x, n.x), offset_component(p.y, n.y), offset_component(p.z, n.z)};
+  const float m = std::max(max_component(abs(p)), kOffsetMinMagnitude);
+  // 2^floor(log2 m) * 2^-15: 256 ulps of m. The dominant normal component (>= 1/sqrt 3) then moves its coordinate
+  // by >= 147 of its own ulps, so the origin lies strictly on w's side of the tangent plane.
+  const float offset = std::bit_cast<float>(std::bit_cast<uint32_t>(m) & 0x7f800000u) * kOffsetRelative;
+  return p + n * offset;
 }
 
 // A ray leaving p (with geometric normal ng) towards w.

@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "renderer/cli/commands.h"
+#include "renderer/cli/converge.h"
 #include "renderer/cli/profile.h"
 
 int main(int argc, char** argv) {
@@ -60,6 +61,26 @@ int main(int argc, char** argv) {
   compare->add_option("reference", cmp_ref, "Reference EXR")->required();
   compare->add_option("--block", cmp_block, "Block size in pixels for the block statistics")->capture_default_str();
 
+  ConvergeArgs ca;
+  std::string ca_accel = "embree";
+  auto* converge = app.add_subcommand("converge", "Error against render time for several strategies: CSV, SVG plot and an efficiency ranking");
+  converge->add_option("scene", ca.scene, "Scene file")->required();
+  converge->add_option("--camera", ca.camera, "Camera id (default: the scene's first camera)");
+  converge->add_option("--reference", ca.reference, "Reference EXR at the rendered resolution (default: render one with mis)");
+  converge->add_option("--strategies", ca.strategies, "Comma-separated: uniform, cosine, brdf, nee, mis, each optionally +rr")->capture_default_str();
+  converge->add_option("--budget", ca.budget_seconds, "Total render seconds across all strategies (reference excluded)")->check(CLI::PositiveNumber)->capture_default_str();
+  converge->add_option("--runs", ca.runs, "Independent runs per strategy (different seeds) for the spread")->check(CLI::PositiveNumber)->capture_default_str();
+  converge->add_option("-o,--output", ca.out_dir, "Output folder for convergence.csv, convergence.svg, reference.exr")->capture_default_str();
+  converge->add_option("--resolution-scale", ca.resolution_scale, "Scale the camera resolution (e.g. 0.25: 512x512 -> 128x128)")->check(CLI::PositiveNumber)->capture_default_str();
+  converge->add_option("--reference-spp", ca.reference_spp, "Samples per pixel of the rendered reference")->check(CLI::PositiveNumber)->capture_default_str();
+  converge->add_option("--max-spp", ca.max_spp, "Cap on the samples per pixel of any run")->check(CLI::PositiveNumber)->capture_default_str();
+  converge->add_option("--seed", ca.seed, "Base random seed (run r uses seed + 1 + r)")->capture_default_str();
+  converge->add_option("--threads", ca.threads, "Worker threads (0: all cores)")->capture_default_str();
+  converge->add_option("--accel", ca_accel, "Ray-query backend: embree or bvh")->check(CLI::IsMember({"embree", "bvh"}))->capture_default_str();
+  converge->add_flag("--keep-delta-lights", ca.keep_delta_lights, "Keep point/spot/directional/area lights even for strategies without NEE (they then converge to a different image)");
+  converge->add_flag("-q,--quiet", ca.quiet, "No progress on stderr");
+  // ---- end ----
+
   ProfileArgs pa;
   std::string profile_accel = "embree";
   auto* profile = app.add_subcommand("profile", "Time and measure the phases of a render (parse, subdivision, "
@@ -101,6 +122,8 @@ int main(int argc, char** argv) {
   ra.accel = accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*render) return run_guarded([&] { return cmd_render(ra); });
   if (*info) return run_guarded([&] { return cmd_info(info_scene, info_subdivide); });
+  ca.accel = ca_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
+  if (*converge) return run_guarded([&] { return cmd_converge(ca); });
   pa.accel = profile_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*profile) return run_guarded([&] { return cmd_profile(pa); });
   if (*check) return run_guarded([&] { return cmd_check_bvh(cb_scene, cb_rays, cb_seed); });

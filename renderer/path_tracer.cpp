@@ -16,6 +16,7 @@ struct DirectionSample {
   float pdf = 0;
   bool specular = false;
   bool transmission = false;
+  float eta = 1.0f;  // relative IOR crossed (transmission)
 };
 
 // Probability of choosing the delta part; compiled out for scenes without delta materials.
@@ -46,13 +47,13 @@ std::optional<DirectionSample> sample_direction(const IntegratorSettings& s, con
   if (s.directions == DirectionSampling::Brdf) {
     auto bs = m.sample(wo_l, uc, u);
     if (!bs || bs->pdf <= 0.0f) return std::nullopt;
-    return DirectionSample{bs->wi, bs->f, bs->pdf, bs->is_specular(), bs->is_transmission()};
+    return DirectionSample{bs->wi, bs->f, bs->pdf, bs->is_specular(), bs->is_transmission(), bs->eta};
   }
   const float pd = delta_prob<kDelta>(m, wo_l);
   if (kDelta && uc < pd) {
     auto bs = m.sample_delta(wo_l, uc / pd, u);
     if (!bs || bs->pdf <= 0.0f) return std::nullopt;
-    return DirectionSample{bs->wi, bs->f, bs->pdf * pd, true, bs->is_transmission()};
+    return DirectionSample{bs->wi, bs->f, bs->pdf * pd, true, bs->is_transmission(), bs->eta};
   }
   // Surface lobe through a BRDF-independent warp; the hemisphere is the one wo lies in (opaque surfaces are
   // already oriented so that wo.z > 0).
@@ -69,6 +70,9 @@ std::optional<DirectionSample> sample_direction(const IntegratorSettings& s, con
 template <bool kDelta, bool kDielectric>
 Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& camera_ray, Rng& rng, RayCounters& c) {
   Rgb L(0.0f), beta(1.0f), potential(1.0f);
+  // Product of eta^2 over transmissions: undoes the 1/eta^2 radiance scaling for the roulette decision, so paths
+  // inside dense glass are not killed for a scale factor that cancels when they leave (pbrt-v4's etaScale).
+  float eta_scale = 1.0f;
   Ray ray = camera_ray;
   bool specular_bounce = true;  // the camera ray counts as one: emitters seen directly are always counted
   float prev_pdf = 0.0f;
@@ -150,13 +154,14 @@ Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& came
     // Reflectance of the bounce: kd for the diffuse lobes (f * pi), the path weight for delta bounces.
     potential *= ds->specular ? ds->f * (abs_cos_theta(ds->wi_local) / ds->pdf) : ds->f * kPi;
     if (beta.is_black() || !beta.is_finite()) break;
+    if (ds->transmission) eta_scale *= sqr(ds->eta);
     specular_bounce = ds->specular;
     prev_pdf = ds->pdf;
     prev = LightQuery{si.p, si.ns};
 
     if (s.russian_roulette && !s.course_roulette && depth >= s.rr_min_depth) {
       // Survival probability from the throughput; dividing by it keeps the estimator unbiased.
-      const float survive = std::min(1.0f, beta.max_component());
+      const float survive = std::min(1.0f, beta.max_component() * eta_scale);
       if (rng.next_float() >= survive) break;
       beta *= 1.0f / survive;
     }

@@ -127,7 +127,9 @@ std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& o
     check_material(scene, s.material, s.name, s.emission.has_value());
     ShapeData sd;
     sd.material = s.material;
-    if (s.emission && !s.emission->is_black()) {
+    if (s.emission && !s.emission->is_black() && !(s.radius > 0.0f)) {
+      w.warnings.push_back(s.name + ": zero-radius light sphere emits nothing; left out of the lights");
+    } else if (s.emission && !s.emission->is_black()) {
       sd.light = int(w.lights.size());
       SphereLight light(s.center, s.radius, s.to_world, *s.emission);
       light.set_course_object_space_pdf(course);

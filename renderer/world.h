@@ -48,6 +48,7 @@ struct World {
   WorldStats stats;
   std::unique_ptr<Accelerator> accel;
   std::vector<std::string> unsupported;
+  std::vector<std::string> warnings;  // found while building (e.g. degenerate lights left out)
 };
 
 struct WorldOptions {

@@ -20,6 +20,8 @@ namespace fs = std::filesystem;
 using Node = pugi::xml_node;
 
 constexpr uint32_t kUnmapped = std::numeric_limits<uint32_t>::max();
+// Face indices beyond this magnitude cannot name a vertex; offsets are ints, so index arithmetic stays in int64.
+constexpr int64_t kMaxListedIndex = int64_t(1) << 62;
 constexpr float kMaxFovYDeg = 180.0f;
 constexpr float kMaxConeAngleDeg = 180.0f;
 constexpr float kMaxBurnPercent = 100.0f;
@@ -896,7 +898,9 @@ class XmlLoader {
     std::vector<uint32_t> globals;  // local -> global vertex
     m.indices.reserve(listed.size());
     for (size_t k = 0; k < listed.size(); ++k) {
-      const int64_t g = listed[k] - index_base() + vertex_offset;
+      // An index this large is out of range anyway; checking first keeps "- base + offset" from overflowing.
+      const bool representable = listed[k] >= -kMaxListedIndex && listed[k] <= kMaxListedIndex;
+      const int64_t g = representable ? listed[k] - index_base() + vertex_offset : -1;
       if (g < 0 || uint64_t(g) >= vertices_.size()) {
         for (uint32_t gv : globals) remap_[gv] = kUnmapped;
         fail(n, "triangle " + std::to_string(k / 3 + 1) + ": " + out_of_range(listed[k], vertex_offset));

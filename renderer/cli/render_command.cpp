@@ -181,6 +181,7 @@ int cmd_render(const RenderArgs& args) {
   const auto world = build_world(scene, wo);
   if (!args.quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", args.scene.c_str(), w.c_str());
+    for (const std::string& w : world->warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", args.scene.c_str(), w.c_str());
     for (const std::string& u : scene.unsupported)
       std::fprintf(stderr, "kiln: warning: %s: not rendered yet: %s\n", args.scene.c_str(), u.c_str());
   }

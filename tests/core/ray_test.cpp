@@ -56,12 +56,12 @@ TEST(OffsetRayOrigin, StrictlyOnTheOutgoingSideAtAllScales) {
         ADD_FAILURE() << "p = (" << p.x << ", " << p.y << ", " << p.z << "), n = (" << n.x << ", " << n.y << ", "
                       << n.z << "), offset " << signed_offset(o, p, side);
     }
-    // Re-intersection safety must not cost accuracy: each coordinate moves by at most the absolute nudge near
-    // the origin (plus the half ulp, <= 2^-29 below 1/32, of rounding the sum) or 256 ulps (<= 2^-15 relative)
-    // elsewhere.
+    // Re-intersection safety must not cost accuracy: each coordinate moves by at most 256 ulps of the point's
+    // largest coordinate (<= 2^-15 relative to it) plus the half ulp of rounding the sum.
+    const double largest = std::max({std::abs(double(p.x)), std::abs(double(p.y)), std::abs(double(p.z))});
     for (int a = 0; a < 3; ++a) {
       const double moved = std::abs(double(o[a]) - double(p[a]));
-      const double bound = std::max(double(kOffsetFloatScale) + 0x1p-29, std::abs(double(p[a])) * 0x1p-15);
+      const double bound = std::max(largest, double(kOffsetMinMagnitude)) * 0x1p-15 + std::abs(double(o[a])) * 0x1p-24;
       if (moved > bound && too_far++ < 5)
         ADD_FAILURE() << "coordinate " << p[a] << " with normal component " << n[a] << " moved by " << moved;
     }
@@ -76,8 +76,8 @@ TEST(OffsetRayOrigin, FollowsTheLeavingDirection) {
   EXPECT_GT(offset_ray_origin(p, n, Vec3f(0, 0, 1)).z, p.z);   // reflection: above
   EXPECT_LT(offset_ray_origin(p, n, Vec3f(0, 0, -1)).z, p.z);  // transmission: below
   EXPECT_LT(offset_ray_origin(p, -n, Vec3f(0.3f, 0, -1)).z, p.z);
-  // Near the threshold between the absolute and the ulp-based offset, on both sides and both signs.
-  for (float c : {kOffsetOriginRegion, std::nextafter(kOffsetOriginRegion, 0.0f), -kOffsetOriginRegion, 0.0f, -0.0f}) {
+  // Tiny, zero and negative-zero coordinates, both signs.
+  for (float c : {1.0f / 32.0f, 1e-30f, -1e-20f, 0.0f, -0.0f}) {
     const Vec3f q(c, c, c);
     const Vec3f nn = normalize(Vec3f(1, -2, 3));
     EXPECT_GT(signed_offset(offset_ray_origin(q, nn, nn), q, nn), 0.0) << c;

@@ -174,17 +174,23 @@ inline void check_scene(const SceneDesc& s) {
     require(finite(l.direction) && finite(l.radiance), "a directional light is non-finite");
   for (const auto& l : s.spot_lights)
     require(finite(l.position) && finite(l.direction) && finite(l.intensity), "a spot light is non-finite");
-  for (const auto& l : s.area_lights)
+  for (const auto& l : s.area_lights) {
     require(finite(l.position) && finite(l.normal) && finite(l.size) && finite(l.radiance) &&
                 (!l.edges || (finite((*l.edges)[0]) && finite((*l.edges)[1]))),
             "an area light is non-finite");
     require(std::abs(length(l.normal) - 1.0f) < kUnitTolerance, "an area light normal is not a unit vector");
+  }
 }
 
-// Feeds `data` to the loader. Returns true when it loaded (and the result passed the checks), false when it threw
-// kiln::Error (bad input, expected); InvariantViolation and anything else propagate. `scratch` must hold the
-// fixtures (write_fixtures) for XML and JSON.
-inline bool run_loader(Loader loader, std::string_view data, const std::filesystem::path& scratch) {
+// Outcome of one input: loaded (and passed the checks), or rejected with this kiln::Error message.
+struct Outcome {
+  bool loaded = true;
+  std::string error;
+};
+
+// Feeds `data` to the loader. kiln::Error (bad input, expected) is caught; InvariantViolation and anything else
+// propagate. `scratch` must hold the fixtures (write_fixtures) for XML and JSON.
+inline Outcome run_loader(Loader loader, std::string_view data, const std::filesystem::path& scratch) {
   try {
     switch (loader) {
       case Loader::Ply:
@@ -206,10 +212,10 @@ inline bool run_loader(Loader loader, std::string_view data, const std::filesyst
         break;
       }
     }
-  } catch (const Error&) {
-    return false;
+  } catch (const Error& e) {
+    return {false, e.what()};
   }
-  return true;
+  return {};
 }
 
 // libFuzzer glue: a scratch folder per process (fork/jobs modes run several), holding the fixtures, removed at a

@@ -127,8 +127,11 @@ TEST(Profile, BundledKillerooKeepsTheScenesLevelOrOverridesIt) {
   a.subdivide = 0;
   const ProfileReport cage = run_profile(a);
   EXPECT_EQ(cage.triangles, 8316u + 6u);  // killeroo + floor and two walls
+  // --subdivide overrides the level of the meshes the scene marks (the killeroo), not the floor and walls.
   a.subdivide = 1;
-  EXPECT_EQ(run_profile(a).triangles, (8316u + 6u) * 4);
+  EXPECT_EQ(run_profile(a).triangles, 8316u * 4 + 6u);
+  a.subdivide = -1;  // the scene's own level (subdivide="2" on the killeroo)
+  EXPECT_EQ(run_profile(a).triangles, 8316u * 16 + 6u);
 }
 
 TEST(Profile, BadInputIsAnError) {

@@ -50,15 +50,15 @@ size_t replay(Loader l, const fs::path& dir, bool ok_prefix_must_load) {
   const auto files = files_in(dir);
   for (const auto& f : files) {
     SCOPED_TRACE(f.string());
-    bool loaded = false;
+    fuzz::Outcome outcome;
     try {
-      loaded = fuzz::run_loader(l, read_all(f), scratch);
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "threw a non-kiln::Error exception: " << e.what();
+      outcome = fuzz::run_loader(l, read_all(f), scratch);
+    } catch (const std::exception& e) {  // InvariantViolation or an exception that is not a kiln::Error
+      ADD_FAILURE() << e.what();
       continue;
     }
     if (ok_prefix_must_load && f.filename().string().rfind("ok_", 0) == 0) {
-      EXPECT_TRUE(loaded) << "an ok_ seed must load; run the loader on it to see the kiln::Error";
+      EXPECT_TRUE(outcome.loaded) << "an ok_ seed must load, got: " << outcome.error;
     }
   }
   return files.size();
