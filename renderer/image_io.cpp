@@ -43,6 +43,18 @@ void write_with_oiio(const std::string& path, const OIIO::ImageSpec& spec, const
   commit(tmp, path);
 }
 
+// Every channel of the first subimage as float, interleaved; returns the file's spec.
+OIIO::ImageSpec read_float_pixels(const std::string& path, std::vector<float>& data) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path, "", "cannot open image: " + OIIO::geterror());
+  const OIIO::ImageSpec spec = in->spec();
+  data.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
+    throw Error(path, "", "cannot read image: " + in->geterror());
+  in->close();
+  return spec;
+}
+
 }  // namespace
 
 void write_exr(const std::string& path, const Image& rgb, const std::vector<AovLayer>& aovs, const Metadata& meta,
@@ -83,13 +95,9 @@ void write_png(const std::string& path, const std::vector<uint8_t>& rgb8, int wi
 }
 
 ExrFile read_exr(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path, "", "cannot open image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> data;
+  const OIIO::ImageSpec spec = read_float_pixels(path, data);
   const int nch = spec.nchannels;
-  std::vector<float> data(size_t(spec.width) * size_t(spec.height) * size_t(nch));
-  if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, data.data()))
-    throw Error(path, "", "cannot read image: " + in->geterror());
   int ir = -1, ig = -1, ib = -1;
   for (int c = 0; c < nch; ++c) {
     const std::string& n = spec.channelnames[size_t(c)];
@@ -115,24 +123,18 @@ ExrFile read_exr(const std::string& path) {
   }
   for (const auto& p : spec.extra_attribs) f.meta.emplace_back(p.name().string(), p.get_string());
   f.window = DataWindow{spec.x, spec.y, spec.full_width, spec.full_height};
-  in->close();
   return f;
 }
 
 Image read_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path, "", "cannot open image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> data;
+  const OIIO::ImageSpec spec = read_float_pixels(path, data);
   const int nch = spec.nchannels;
-  std::vector<float> data(size_t(spec.width) * size_t(spec.height) * size_t(nch));
-  if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, data.data()))
-    throw Error(path, "", "cannot read image: " + in->geterror());
   Image img(spec.width, spec.height);
   for (size_t i = 0; i < img.pixels().size(); ++i) {
     const float* d = &data[i * size_t(nch)];
     img.pixels()[i] = nch >= 3 ? Rgb(d[0], d[1], d[2]) : Rgb(d[0]);
   }
-  in->close();
   return img;
 }
 
