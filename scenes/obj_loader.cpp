@@ -153,6 +153,23 @@ void validate_obj_text(const std::string& text, const std::string& source) {
   for_each_line(text, [&](std::string_view line, int line_no) { validator.line(line, line_no); });
 }
 
+// The text tinyobjloader parses: only the statements Kiln uses and the pre-scan has validated (v, vt, vn, f).
+// Every other line (groups, materials, lines, points, tags, skin weights, ...) is blanked, keeping line numbers:
+// Kiln ignores those statements, and tinyobjloader parses them unchecked (a `vw` joint id of 1e99 is converted
+// to int, undefined behaviour; each `t` tag line allocates up to 3 x 8192 values, so a 64 KB file of them
+// allocates gigabytes).
+std::string used_statements(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for_each_line(text, [&](std::string_view line, int) {
+    const auto tokens = split_tokens(line);
+    if (!tokens.empty() && (tokens[0] == "v" || tokens[0] == "vt" || tokens[0] == "vn" || tokens[0] == "f"))
+      out += line;
+    out += '\n';
+  });
+  return out;
+}
+
 // ---- Conversion of tinyobjloader's output to a MeshDesc.
 
 struct VertexKey {
@@ -238,7 +255,7 @@ MeshDesc parse_obj(const std::string& text, const std::string& source_name) {
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
-  std::istringstream stream(text);
+  std::istringstream stream(used_statements(text));
   // No MaterialReader: `mtllib` is ignored (materials come from the scene file).
   const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, nullptr,
                                    /*triangulate=*/true, /*default_vcols_fallback=*/false);

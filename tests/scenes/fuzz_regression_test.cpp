@@ -37,8 +37,11 @@ std::string read_all(const fs::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-fs::path scratch_for(Loader l) {
-  const fs::path dir = fs::path(KILN_TEST_TMP) / "fuzz_regression" / std::string(fuzz::loader_name(l));
+// One scratch folder per input folder: ctest runs the tests as parallel processes, and XML/JSON inputs are written
+// to scratch/input.xml (.json) before loading.
+fs::path scratch_for(const fs::path& input_dir) {
+  const fs::path dir =
+      fs::path(KILN_TEST_TMP) / "fuzz_regression" / input_dir.parent_path().filename() / input_dir.filename();
   fs::create_directories(dir);
   fuzz::write_fixtures(dir);
   return dir;
@@ -46,7 +49,7 @@ fs::path scratch_for(Loader l) {
 
 // Feeds every file of `dir`; returns how many there were.
 size_t replay(Loader l, const fs::path& dir, bool ok_prefix_must_load) {
-  const fs::path scratch = scratch_for(l);
+  const fs::path scratch = scratch_for(dir);
   const auto files = files_in(dir);
   for (const auto& f : files) {
     SCOPED_TRACE(f.string());
