@@ -85,6 +85,12 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
       RenderStats& st = tile_stats[ti];
       for (int y = t.y0; y < t.y1; ++y)
         for (int x = t.x0; x < t.x1; ++x) {
+          // Checked per pixel, not per tile: at high spp one tile can take minutes, and an interrupt must stop
+          // promptly. Pixels keep their own sample counts, so a partly rendered tile is still a valid image.
+          if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+            st.cancelled = true;
+            break;
+          }
           PixelSum& px = film.at(x, y);
           for (uint32_t s = first; s < last; ++s) {
             Rng rng = pixel_sample_rng(options.seed, uint32_t(x), uint32_t(y), s);
