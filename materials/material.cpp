@@ -184,7 +184,7 @@ std::optional<BsdfSample> Material::sample(Vec3f wo, float uc, Vec2f u) const {
 int Material::delta_branches(Vec3f wo, DeltaBranch out[2]) const {
   SpecularBranch b[2];
   const int n = delta_branches_of(delta, wo, b);
-  for (int i = 0; i < n; ++i) out[i] = DeltaBranch{b[i].wi, b[i].weight, b[i].transmission};
+  for (int i = 0; i < n; ++i) out[i] = DeltaBranch{b[i].wi, b[i].weight, b[i].transmission, b[i].etap};
   return n;
 }
 

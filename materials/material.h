@@ -27,6 +27,7 @@ struct DeltaBranch {
   Vec3f wi;       // local frame
   Rgb weight;     // multiplies the radiance arriving along wi (Fresnel, mirror colour; no cosine, no pdf)
   bool transmission = false;
+  float etap = 1.0f;  // relative IOR crossed (transmission only): weight includes the 1/etap^2 radiance scaling
 };
 
 struct Material {

@@ -6,12 +6,16 @@ namespace kiln {
 inline constexpr int kDefaultMaxDepth = 8;
 // The course ray tracer's recursion depth when a scene does not give MaxRecursionDepth.
 inline constexpr int kDefaultCourseRecursion = 5;
+// The course framework's ShadowRayEpsilon when a scene does not give one (its parser's default).
+inline constexpr float kDefaultCourseShadowRayEpsilon = 1e-3f;
 
 IntegratorSettings settings_for_camera(const CameraDesc& camera, const SceneDesc& scene) {
   IntegratorSettings s;
   s.kind = camera.renderer;
   if (camera.renderer == RendererKind::RayTracing) {
     s.max_depth = scene.max_recursion_depth.value_or(kDefaultCourseRecursion);
+    if (scene.format == "ceng795-xml")
+      s.course_ray_epsilon = scene.shadow_ray_epsilon.value_or(kDefaultCourseShadowRayEpsilon);
     return s;
   }
   if (camera.renderer_explicit && (scene.format == "ceng795-xml" || scene.format == "cs171-json")) {

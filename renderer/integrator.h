@@ -21,6 +21,7 @@ struct IntegratorSettings {
   int max_depth = 8;              // bounces after the camera ray; < 0: unlimited (only with roulette)
   int rr_min_depth = 3;           // Kiln's roulette starts after this many bounces
   bool nee_at_last_vertex = false;  // course rule: the vertex at max_depth still samples lights (README)
+  float course_ray_epsilon = 0.0f;  // course ray tracer: ShadowRayEpsilon offset along the normal; 0 = ulp offset
   float clamp = 0.0f;             // firefly clamp on per-sample radiance; 0 = off (default)
   uint32_t features = kFeatureAll;  // the scene's feature mask; code paths for absent features are skipped
   std::string describe() const;

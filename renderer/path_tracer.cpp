@@ -89,10 +89,14 @@ Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& came
     SurfaceInteraction si = make_interaction(w, ray, hit);
     const Vec3f wo = -ray.d;
     // Course roulette (spec §11, README "Course path-tracing semantics"): decided on arrival at a vertex from the
-    // path's "potential" (product of surface reflectances); a surviving path divides everything it gathers from
-    // here on, including this vertex's own emission and NEE, by the survival probability, while a terminated
-    // path still keeps this vertex's direct light. That over-weights direct light by (2 - p) and is what makes
-    // the course's RussianRoulette references 25-50% brighter; Kiln's own roulette (below) is unbiased.
+    // path's "potential", the product of the BRDF VALUES f (not the reflectances f*pi) of its diffuse / glossy
+    // bounces; a surviving path divides everything it gathers from here on, including this vertex's own emission
+    // and NEE, by the survival probability, while a terminated path still keeps this vertex's direct light. That
+    // over-weights the light found at the k-th bounce by 2 - p_k, p_k ~ (kd/pi)^k: about x1.74 from the first
+    // bounce on (x1.94 from the second), which is what makes the course's RussianRoulette references 25-50%
+    // brighter than its depth-capped ones. The survivors' weights, kd^k (pi/kd)^(k(k+1)/2) with cosine-sampled
+    // diffuse bounces, also reproduce the references' firefly levels (a path that reaches the light after three
+    // bounces: ~590 in a 100 spp pixel). Kiln's own roulette (below) is unbiased.
     bool course_stop = false;
     if (s.course_roulette && depth > 0) {
       const float survive = std::min(1.0f, potential.max_component());
@@ -148,11 +152,18 @@ Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& came
     if (last_vertex) break;
     const auto ds = sample_direction<kDelta>(s, m, wo_l, rng);
     if (!ds) break;
+    // The course's glossy coat of a dielectric scatters only outside. Kiln's coat is two-sided: from inside it
+    // can turn a ray beyond the critical angle, total internal reflection in a sphere then keeps it there for
+    // good, and the course roulette (survival 1 while the potential is >= 1) would never end it.
+    if constexpr (kDielectric) {
+      if (s.course_roulette && !ds->specular && is_dielectric(m) && wo_l.z < 0.0f) break;
+    }
     const Vec3f wi = frame.to_world(ds->wi_local);
     if (!ds->transmission && !valid_reflection_side(si, wo, wi)) break;
     beta *= ds->f * (abs_cos_theta(ds->wi_local) / ds->pdf);
-    // Reflectance of the bounce: kd for the diffuse lobes (f * pi), the path weight for delta bounces.
-    potential *= ds->specular ? ds->f * (abs_cos_theta(ds->wi_local) / ds->pdf) : ds->f * kPi;
+    // The course potential: BRDF values of the diffuse / glossy bounces; delta bounces, which the course follows
+    // deterministically, leave it alone (their sample weights carry Kiln's lobe-selection factors).
+    if (!ds->specular) potential *= ds->f;
     if (beta.is_black() || !beta.is_finite()) break;
     if (ds->transmission) eta_scale *= sqr(ds->eta);
     specular_bounce = ds->specular;
