@@ -51,7 +51,7 @@ Rgb direct_from_lights(const World& w, const IntegratorSettings& s, const Surfac
 Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray, int depth, Rng& rng,
                     RayCounters& c) {
   Hit hit;
-  if (!query_intersect(w, ray, hit, c, depth == 0 ? c.primary : c.indirect)) return w.background;
+  if (!query_intersect(w, ray, hit, c, depth == 0)) return w.background;
   SurfaceInteraction si = make_interaction(w, ray, hit);
   const Vec3f wo = -ray.d;
   Rgb L(0.0f);

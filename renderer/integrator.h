@@ -30,16 +30,20 @@ struct IntegratorSettings {
 // Per-thread counters, merged per tile (no atomics on the hot path).
 struct RayCounters {
   uint64_t primary = 0, shadow = 0, indirect = 0;
-  uint64_t query_cycles = 0;  // TSC cycles spent inside accelerator queries
+  // TSC cycles spent inside accelerator queries, by ray kind (the query rate of each kind inside a render).
+  uint64_t primary_cycles = 0, shadow_cycles = 0, indirect_cycles = 0;
   uint64_t nan_samples = 0;
   void add(const RayCounters& o) {
     primary += o.primary;
     shadow += o.shadow;
     indirect += o.indirect;
-    query_cycles += o.query_cycles;
+    primary_cycles += o.primary_cycles;
+    shadow_cycles += o.shadow_cycles;
+    indirect_cycles += o.indirect_cycles;
     nan_samples += o.nan_samples;
   }
   uint64_t total() const { return primary + shadow + indirect; }
+  uint64_t query_cycles() const { return primary_cycles + shadow_cycles + indirect_cycles; }
 };
 
 // Settings for a camera: the scene's Renderer/RendererParams, MaxRecursionDepth and Kiln's defaults.

@@ -82,7 +82,7 @@ Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& came
 
   for (int depth = 0;; ++depth) {
     Hit hit;
-    if (!query_intersect(w, ray, hit, c, depth == 0 ? c.primary : c.indirect)) {
+    if (!query_intersect(w, ray, hit, c, depth == 0)) {
       if (depth == 0) L += beta * w.background;
       break;
     }
@@ -142,7 +142,9 @@ Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& came
           const Rgb f = m.eval(wo_l, wi_l);
           if (!f.is_black() && !query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light), c)) {
             const float light_pdf = ls->pdf * pmf;
-            const float weight = (s.mis && !ls->delta) ? power_heuristic(light_pdf, strategy_pdf<kDelta>(s, m, wo_l, wi_l)) : 1.0f;
+            // At the course's last vertex no direction is sampled after NEE, so NEE carries the full weight.
+            const bool combine = s.mis && !ls->delta && !last_vertex;
+            const float weight = combine ? power_heuristic(light_pdf, strategy_pdf<kDelta>(s, m, wo_l, wi_l)) : 1.0f;
             L += beta * f * ls->li * (abs_cos_theta(wi_l) * weight / light_pdf);
           }
         }

@@ -6,18 +6,25 @@
 
 namespace kiln {
 
-inline bool query_intersect(const World& w, const Ray& r, Hit& hit, RayCounters& c, uint64_t& counter) {
+// A camera ray when `primary`, else an indirect (bounce) ray.
+inline bool query_intersect(const World& w, const Ray& r, Hit& hit, RayCounters& c, bool primary) {
   const uint64_t t0 = __rdtsc();
   const bool h = w.accel->intersect(r, hit);
-  c.query_cycles += __rdtsc() - t0;
-  ++counter;
+  const uint64_t dt = __rdtsc() - t0;
+  if (primary) {
+    c.primary_cycles += dt;
+    ++c.primary;
+  } else {
+    c.indirect_cycles += dt;
+    ++c.indirect;
+  }
   return h;
 }
 
 inline bool query_occluded(const World& w, const Ray& r, RayCounters& c) {
   const uint64_t t0 = __rdtsc();
   const bool o = w.accel->occluded(r);
-  c.query_cycles += __rdtsc() - t0;
+  c.shadow_cycles += __rdtsc() - t0;
   ++c.shadow;
   return o;
 }

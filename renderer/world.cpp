@@ -1,6 +1,7 @@
 #include "renderer/world.h"
 
 #include <chrono>
+#include <utility>
 
 #include "core/error.h"
 #include "scenes/material_mapping.h"
@@ -24,6 +25,22 @@ std::vector<Vec3f> transformed_points(const std::vector<Vec3f>& p, const Transfo
   out.reserve(p.size() + 1);
   for (const Vec3f& v : p) out.push_back(t.point(v));
   return out;
+}
+
+// The consuming build (build_world_taking_meshes) takes the description's arrays instead of copying them, so a large
+// mesh is held once, not twice, while the accelerator is built and during the render (24 B/triangle).
+template <typename T>
+std::vector<T> take_with_spare_capacity(std::vector<T>& v) {
+  std::vector<T> out = std::move(v);
+  v = std::vector<T>();
+  if (out.capacity() <= out.size()) out.reserve(out.size() + 1);
+  return out;
+}
+
+std::vector<Vec3f> take_transformed_points(std::vector<Vec3f>& p, const Transform& t) {
+  if (!t.is_identity())
+    for (Vec3f& v : p) v = t.point(v);
+  return take_with_spare_capacity(p);
 }
 
 // Area-weighted average of the adjacent face normals (the cross product's length is twice the area).
@@ -59,7 +76,10 @@ AreaLight make_area_light(const AreaLightDesc& d) {
 
 }  // namespace
 
-std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& options) {
+namespace {
+
+// `consumable`, when given, is `scene` itself: its meshes' arrays are moved into the world (left empty).
+std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consumable, const WorldOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   auto world = std::make_unique<World>();
   World& w = *world;
@@ -92,16 +112,21 @@ std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& o
     }
     if (!m.visible || m.indices.empty()) continue;
     check_material(scene, m.material, m.name, m.emission.has_value());
-    TriangleMesh tm{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
+    // Instance bases stay in the description: their prototype copy above was taken from it.
+    MeshDesc* take = consumable && !m.is_instance_base ? &consumable->meshes[i] : nullptr;
+    TriangleMesh tm = take ? TriangleMesh{take_transformed_points(take->positions, m.to_world),
+                                          take_with_spare_capacity(take->indices)}
+                           : TriangleMesh{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
     ShapeData sd;
     sd.material = m.material;
     sd.smooth = m.smooth || !m.normals.empty();
+    if (take) take->uvs = {};  // nothing in the world reads texture coordinates (textures are reported unsupported)
     if (!m.normals.empty()) {
-      std::vector<Vec3f> n(m.normals.size());
-      for (size_t k = 0; k < n.size(); ++k) {
-        const Vec3f wn = m.to_world.normal(m.normals[k]);
+      std::vector<Vec3f> n = take ? std::exchange(take->normals, {}) : m.normals;
+      for (Vec3f& v : n) {
+        const Vec3f wn = m.to_world.normal(v);
         const float len = length(wn);
-        n[k] = len > 0.0f ? wn / len : Vec3f(0.0f);
+        v = len > 0.0f ? wn / len : Vec3f(0.0f);
       }
       sd.normals = int(w.normals.size());
       w.normals.push_back(std::move(n));
@@ -206,6 +231,16 @@ std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& o
   if (options.build_accelerator) w.accel = make_accelerator(options.accel, g);
   w.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return world;
+}
+
+}  // namespace
+
+std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& options) {
+  return build_world_impl(scene, nullptr, options);
+}
+
+std::unique_ptr<World> build_world_taking_meshes(SceneDesc& scene, const WorldOptions& options) {
+  return build_world_impl(scene, &scene, options);
 }
 
 }  // namespace kiln

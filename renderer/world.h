@@ -62,5 +62,8 @@ struct WorldOptions {
 
 // Throws kiln::Error on inconsistent descriptions (dangling material indices etc.).
 std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& options);
+// Moves the meshes' vertex, index and normal arrays out of `scene` instead of copying them (a large mesh is then held
+// once); everything else in the description (cameras, materials, lights, mesh names) stays valid.
+std::unique_ptr<World> build_world_taking_meshes(SceneDesc& scene, const WorldOptions& options);
 
 }  // namespace kiln

@@ -164,16 +164,16 @@ void BM_AccelTrace(benchmark::State& state) {
 }
 
 void trace_args(benchmark::internal::Benchmark* b) {
-  for (int level : {0, 1, 2, 3})
+  for (int level : {0, 1, 2, 3, 4})
     for (int kind : {0, 1, 2}) b->Args({level, kind});
 }
 
 BENCHMARK(BM_AccelBuild<false>)
     ->Name("AccelBuild/embree")
-    ->DenseRange(0, 3)
+    ->DenseRange(0, 4)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK(BM_AccelBuild<true>)->Name("AccelBuild/bvh")->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AccelBuild<true>)->Name("AccelBuild/bvh")->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AccelTrace<false>)->Name("AccelTrace/embree")->Apply(trace_args)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AccelTrace<true>)->Name("AccelTrace/bvh")->Apply(trace_args)->Unit(benchmark::kMillisecond);
 

@@ -120,8 +120,9 @@ SceneDesc load_unsubdivided(const ProfileArgs& args) {
   return load_scene(args.scene, lo);
 }
 
-RayKindStats ray_kind(uint64_t count, double seconds) {
-  return {count, double(count) / std::max(seconds, 1e-9) / 1e6};
+RayKindStats ray_kind(uint64_t count, double seconds, uint64_t query_cycles) {
+  const double query_seconds = double(query_cycles) / tsc_frequency();
+  return {count, double(count) / std::max(seconds, 1e-9) / 1e6, double(count) / std::max(query_seconds, 1e-9) / 1e6};
 }
 
 }  // namespace
@@ -169,7 +170,7 @@ ProfileReport run_profile(const ProfileArgs& args) {
   t = Clock::now();
   WorldOptions wo;
   wo.accel = args.accel;
-  const auto world = build_world(scene, wo);
+  const auto world = build_world_taking_meshes(scene, wo);
   const double build_seconds = seconds_since(t);
   r.build_cpu_seconds = cpu_since();
   const AccelStats as = world->accel->stats();
@@ -209,15 +210,15 @@ ProfileReport run_profile(const ProfileArgs& args) {
     r.height = camera.height();
     r.spp = ro.spp_total;
     r.render_seconds = rs.seconds;
-    r.primary = ray_kind(rs.rays.primary, rs.seconds);
-    r.shadow = ray_kind(rs.rays.shadow, rs.seconds);
-    r.indirect = ray_kind(rs.rays.indirect, rs.seconds);
-    r.total = ray_kind(rs.rays.total(), rs.seconds);
+    r.primary = ray_kind(rs.rays.primary, rs.seconds, rs.rays.primary_cycles);
+    r.shadow = ray_kind(rs.rays.shadow, rs.seconds, rs.rays.shadow_cycles);
+    r.indirect = ray_kind(rs.rays.indirect, rs.seconds, rs.rays.indirect_cycles);
+    r.total = ray_kind(rs.rays.total(), rs.seconds, rs.rays.query_cycles());
     r.mrays_per_cpu_second = double(rs.rays.total()) / std::max(1e-9, r.render_cpu_seconds) / 1e6;
     // TSC cycles in queries include time the thread was descheduled, so they are compared with wall x threads,
     // which does too (the render's CPU time does not).
     const double thread_seconds = std::max(1e-9, rs.seconds * double(r.threads));
-    r.ray_query_share = std::clamp(double(rs.rays.query_cycles) / tsc_frequency() / thread_seconds, 0.0, 1.0);
+    r.ray_query_share = std::clamp(double(rs.rays.query_cycles()) / tsc_frequency() / thread_seconds, 0.0, 1.0);
     r.render_peak_rss = phase_peak();
   }
   r.total_seconds = seconds_since(t_start);
@@ -226,7 +227,9 @@ ProfileReport run_profile(const ProfileArgs& args) {
 
 std::string profile_json(const ProfileReport& r) {
   auto kind = [](const RayKindStats& k) {
-    return nlohmann::json{{"count", k.count}, {"mrays_per_second", k.mrays_per_second}};
+    return nlohmann::json{{"count", k.count},
+                          {"mrays_per_second", k.mrays_per_second},
+                          {"query_mrays_per_thread_second", k.query_mrays_per_second}};
   };
   nlohmann::json j;
   j["scene"] = r.scene;
@@ -298,11 +301,13 @@ std::string profile_table(const ProfileReport& r) {
   if (r.rendered) {
     add("  %-26s %10.3f %10.3f   (camera %s, %dx%d, %u spp)\n", "render", r.render_seconds, r.render_cpu_seconds,
         r.camera.c_str(), r.width, r.height, r.spp);
-    add("\n  %-26s %14s %10s\n", "rays", "count", "Mrays/s");
+    add("\n  %-26s %14s %10s %14s\n", "rays", "count", "Mrays/s", "query Mrays/s");
     for (const auto& [name, k] : {std::pair{"primary", r.primary}, std::pair{"shadow", r.shadow},
                                   std::pair{"indirect", r.indirect}, std::pair{"total", r.total}})
-      add("  %-26s %14llu %10.2f\n", name, (unsigned long long)k.count, k.mrays_per_second);
+      add("  %-26s %14llu %10.2f %14.2f\n", name, (unsigned long long)k.count, k.mrays_per_second,
+          k.query_mrays_per_second);
     add("  %-26s %14s %10.2f\n", "total per CPU second", "", r.mrays_per_cpu_second);
+    add("  (query Mrays/s: rays per second of one thread's time inside accelerator queries)\n");
     add("\n  render thread time: %.0f%% ray queries, %.0f%% shading+sampling (remainder: shading, BSDF/light "
         "sampling, camera rays, film, scheduling)\n",
         100.0 * r.ray_query_share, 100.0 * (1.0 - r.ray_query_share));

@@ -73,3 +73,28 @@ TEST(Determinism, FeatureMaskSpecialisationDoesNotChangePixels) {
 
 }  // namespace
 }  // namespace kiln::test
+
+namespace kiln::test {
+namespace {
+
+// Handing the meshes' arrays to the world (kiln render / kiln profile) must not change a pixel, and must really
+// empty the description (else the memory saving is not there).
+TEST(Determinism, WorldTakingTheMeshesRendersTheSameImage) {
+  for (const char* file : {"/scenes/default.xml", "/scenes/killeroo_blinnphong.xml"}) {
+    SCOPED_TRACE(file);
+    SceneDesc scene = load_scene(std::string(KILN_SOURCE_DIR) + file);
+    scene.cameras[0].width = scene.cameras[0].height = 24;
+    const auto copied = build_world(scene, {});
+    const auto taken = build_world_taking_meshes(scene, {});
+    size_t left = 0;
+    for (const MeshDesc& m : scene.meshes)
+      if (!m.is_instance_base) left += m.positions.size() + m.indices.size() + m.normals.size() + m.uvs.size();
+    EXPECT_EQ(left, 0u);
+    EXPECT_EQ(copied->stats.triangles, taken->stats.triangles);
+    const IntegratorSettings s = settings_for_camera(scene.cameras[0], scene);
+    EXPECT_TRUE(bit_identical(render_image(*copied, scene.cameras[0], s, 2, 9), render_image(*taken, scene.cameras[0], s, 2, 9)));
+  }
+}
+
+}  // namespace
+}  // namespace kiln::test

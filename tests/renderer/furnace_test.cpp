@@ -65,6 +65,25 @@ INSTANTIATE_TEST_SUITE_P(
                       FurnaceCase{"mis_rr_unbounded", DirectionSampling::Brdf, true, true, true, false, -1}),
     [](const auto& tp) { return std::string(tp.param.name); });
 
+// The course rule (NEE also at the vertex at MaxRecursionDepth) adds exactly one more bounce of light, for plain NEE
+// and for MIS alike: there no direction is sampled after NEE, so its MIS weight must be 1 (a weight < 1 would lose
+// the share the missing BRDF-sampled ray should have carried).
+TEST(Furnace, NeeAtTheLastVertexAddsOneBounceWithAndWithoutMis) {
+  for (const bool mis : {false, true})
+    for (const DirectionSampling dirs : {DirectionSampling::Brdf, DirectionSampling::Uniform}) {
+      const FurnaceCase fc{mis ? "mis_last_vertex_d3" : "nee_last_vertex_d3", dirs, true, mis, false, false, 3};
+      IntegratorSettings s = settings_of(fc);
+      s.nee_at_last_vertex = true;
+      const SceneDesc scene = furnace_box(0.8f, Rgb(1.0f));
+      const auto world = build_world(scene, {});
+      const Estimate e = estimate_mean(*world, s, scene.cameras[0], 200000);
+      const double want = expected(0.8, 1.0, 4);
+      EXPECT_NEAR(e.mean, want, 4.5 * e.stderr_ + 1e-4 * want)
+          << fc.name << (dirs == DirectionSampling::Uniform ? " uniform" : " brdf") << ": mean " << e.mean << " +- "
+          << e.stderr_ << ", expected " << want;
+    }
+}
+
 // pbrt-style unit case: emission 1 - a makes the exact answer 1 for any albedo.
 TEST(Furnace, UnitRadiance) {
   const SceneDesc scene = furnace_box(0.7f, Rgb(0.3f));
