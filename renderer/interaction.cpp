@@ -15,6 +15,7 @@ Vec3f interpolated_normal(const std::vector<Vec3f>& n, const TriangleMesh& m, ui
 
 }  // namespace
 
+template <bool kMeshesOnly>
 SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hit& hit) {
   SurfaceInteraction si;
   si.t = hit.t;
@@ -25,7 +26,8 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   si.material = sd.material >= 0 ? &world.materials[size_t(sd.material)] : nullptr;
   si.light = sd.light;
   Vec3f ns(0.0f);
-  switch (shape.kind) {
+  const ShapeKind kind = kMeshesOnly ? ShapeKind::Mesh : shape.kind;
+  switch (kind) {
     case ShapeKind::Mesh: {
       const TriangleMesh& m = world.geometry.meshes[shape.index];
       const Vec3f a = m.vertex(hit.prim, 0), b = m.vertex(hit.prim, 1), c = m.vertex(hit.prim, 2);
@@ -67,5 +69,8 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   }
   return si;
 }
+
+template SurfaceInteraction make_interaction<false>(const World&, const Ray&, const Hit&);
+template SurfaceInteraction make_interaction<true>(const World&, const Ray&, const Hit&);
 
 }  // namespace kiln

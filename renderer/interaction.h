@@ -16,6 +16,9 @@ struct SurfaceInteraction {
   uint32_t shape = 0, prim = 0;
 };
 
+// kMeshesOnly: the scene's feature mask has neither spheres nor instances, so every hit is on a world-space mesh
+// and the shape dispatch is compiled out (the path tracer's specialisation; explicit instantiations for both).
+template <bool kMeshesOnly = false>
 SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hit& hit);
 
 }  // namespace kiln

@@ -66,8 +66,9 @@ std::optional<DirectionSample> sample_direction(const IntegratorSettings& s, con
 }
 
 // The path loop, specialised on the scene's feature mask (Cycles-style): a scene without delta materials
-// never asks for delta probabilities, one without dielectrics never tracks media.
-template <bool kDelta, bool kDielectric>
+// never asks for delta probabilities, one without dielectrics never tracks media, one with only world-space meshes
+// (no spheres, no instances) skips the shape dispatch.
+template <bool kDelta, bool kDielectric, bool kMeshesOnly>
 Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& camera_ray, Rng& rng, RayCounters& c) {
   Rgb L(0.0f), beta(1.0f), potential(1.0f);
   // Product of eta^2 over transmissions: undoes the 1/eta^2 radiance scaling for the roulette decision, so paths
@@ -86,7 +87,7 @@ Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& came
       if (depth == 0) L += beta * w.background;
       break;
     }
-    SurfaceInteraction si = make_interaction(w, ray, hit);
+    SurfaceInteraction si = make_interaction<kMeshesOnly>(w, ray, hit);
     const Vec3f wo = -ray.d;
     // Course roulette (spec §11, README "Course path-tracing semantics"): decided on arrival at a vertex from the
     // path's "potential", the product of the BRDF VALUES f (not the reflectances f*pi) of its diffuse / glossy
@@ -191,9 +192,14 @@ Rgb trace_path_impl(const World& w, const IntegratorSettings& s, const Ray& came
 
 Rgb trace_path(const World& w, const IntegratorSettings& s, const Ray& ray, Rng& rng, RayCounters& c) {
   const bool delta = s.features & kFeatureDelta, dielectric = s.features & kFeatureDielectric;
-  if (dielectric) return trace_path_impl<true, true>(w, s, ray, rng, c);
-  if (delta) return trace_path_impl<true, false>(w, s, ray, rng, c);
-  return trace_path_impl<false, false>(w, s, ray, rng, c);
+  if (!(s.features & (kFeatureSpheres | kFeatureInstances))) {
+    if (dielectric) return trace_path_impl<true, true, true>(w, s, ray, rng, c);
+    if (delta) return trace_path_impl<true, false, true>(w, s, ray, rng, c);
+    return trace_path_impl<false, false, true>(w, s, ray, rng, c);
+  }
+  if (dielectric) return trace_path_impl<true, true, false>(w, s, ray, rng, c);
+  if (delta) return trace_path_impl<true, false, false>(w, s, ray, rng, c);
+  return trace_path_impl<false, false, false>(w, s, ray, rng, c);
 }
 
 }  // namespace kiln

@@ -63,6 +63,7 @@ TEST(Determinism, FeatureMaskSpecialisationDoesNotChangePixels) {
   scene.cameras[0].width = scene.cameras[0].height = 16;
   const auto world = build_world(scene, {});
   ASSERT_FALSE(world->features & kFeatureDelta);
+  ASSERT_FALSE(world->features & (kFeatureSpheres | kFeatureInstances));  // the meshes-only kernel
   IntegratorSettings s;
   s.features = world->features;
   const Image specialised = render_image(*world, scene.cameras[0], s, 4, 3);
