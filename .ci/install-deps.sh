@@ -3,8 +3,8 @@
 set -euo pipefail
 pkgs=(build-essential cmake libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
       libtinyobjloader-dev libgtest-dev libbenchmark-dev libpugixml-dev nlohmann-json3-dev libcli11-dev)
-# The sanitizer and fuzzing builds use clang's runtime.
-if [ "${KILN_WITH_CLANG:-0}" = 1 ]; then pkgs+=(clang libclang-rt-14-dev); fi
+# libFuzzer (the Fuzz.LoadersRunClean test, .ci/fuzz.sh) needs clang and its runtime.
+pkgs+=(clang libclang-rt-14-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -87,7 +87,7 @@ struct ProfileReport {
   size_t parse_peak_rss = 0, subdivision_peak_rss = 0, build_peak_rss = 0, render_peak_rss = 0;
   bool peak_reset_supported = false;
   std::string peak_source;  // "VmHWM" or "ru_maxrss"
-  size_t scene_desc_bytes = 0;       // MeshDesc positions/indices/normals/uvs (kept alive during the render)
+  size_t scene_desc_bytes = 0;       // MeshDesc positions/indices/normals/uvs as loaded (then moved into the world)
   size_t world_geometry_bytes = 0;   // WorldGeometry meshes and prototypes
   size_t world_normals_bytes = 0;    // World::normals
   size_t accel_bytes = 0;            // as the accelerator reports it
