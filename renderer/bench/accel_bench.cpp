@@ -19,6 +19,7 @@
 #include "renderer/accel/embree_accel.h"
 #include "renderer/accel/hit_point.h"
 #include "renderer/accel/shape_bounds.h"
+#include "renderer/bench/trace_loop.h"
 #include "scenes/ply_loader.h"
 #include "scenes/subdivision.h"
 
@@ -143,24 +144,7 @@ template <bool kBvh>
 void BM_AccelTrace(benchmark::State& state) {
   const Fixture& f = fixture(int(state.range(0)));
   const int kind = int(state.range(1));
-  const Accelerator& acc = f.accel(kBvh);
-  const std::vector<Ray>& rays = f.rays(kind);
-  size_t hits = 0;
-  for (auto _ : state) {
-    for (const Ray& r : rays) {
-      if (kind == 2) {
-        hits += acc.occluded(r);
-      } else {
-        Hit h;
-        hits += acc.intersect(r, h);
-      }
-    }
-  }
-  benchmark::DoNotOptimize(hits);
-  state.counters["Mrays/s"] =
-      benchmark::Counter(double(rays.size()) * double(state.iterations()) * 1e-6, benchmark::Counter::kIsRate);
-  state.counters["hit%"] = 100.0 * double(hits) / (double(rays.size()) * double(state.iterations()));
-  state.SetLabel(kind == 0 ? "primary" : kind == 1 ? "bounce" : "shadow");
+  trace_rays_benchmark(state, f.accel(kBvh), f.rays(kind), kind);
 }
 
 void trace_args(benchmark::internal::Benchmark* b) {

@@ -19,6 +19,7 @@
 #include "renderer/film.h"
 #include "renderer/render.h"
 #include "renderer/world.h"
+#include "renderer/bench/trace_loop.h"
 #include "scenes/loader.h"
 
 namespace kiln {
@@ -88,24 +89,7 @@ const Replay& replay(int levels) {
 void BM_AccelReplay(benchmark::State& state) {
   const Replay& rp = replay(int(state.range(0)));
   const int kind = int(state.range(1));
-  const std::vector<Ray>& rays = rp.rays[kind];
-  const Accelerator& acc = *rp.world->accel;
-  size_t hits = 0;
-  for (auto _ : state) {
-    for (const Ray& r : rays) {
-      if (kind == 2) {
-        hits += acc.occluded(r);
-      } else {
-        Hit h;
-        hits += acc.intersect(r, h);
-      }
-    }
-  }
-  benchmark::DoNotOptimize(hits);
-  state.counters["Mrays/s"] =
-      benchmark::Counter(double(rays.size()) * double(state.iterations()) * 1e-6, benchmark::Counter::kIsRate);
-  state.counters["rays"] = double(rays.size());
-  state.SetLabel(kind == 0 ? "primary" : kind == 1 ? "bounce" : "shadow");
+  trace_rays_benchmark(state, *rp.world->accel, rp.rays[kind], kind);
 }
 
 BENCHMARK(BM_AccelReplay)
