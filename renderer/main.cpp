@@ -79,7 +79,6 @@ int main(int argc, char** argv) {
   converge->add_option("--accel", ca_accel, "Ray-query backend: embree or bvh")->check(CLI::IsMember({"embree", "bvh"}))->capture_default_str();
   converge->add_flag("--keep-delta-lights", ca.keep_delta_lights, "Keep point/spot/directional/area lights even for strategies without NEE (they then converge to a different image)");
   converge->add_flag("-q,--quiet", ca.quiet, "No progress on stderr");
-  // ---- end ----
 
   ProfileArgs pa;
   std::string profile_accel = "embree";

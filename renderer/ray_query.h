@@ -6,6 +6,10 @@
 
 namespace kiln {
 
+// TSC ticks per second, measured once against the steady clock: converts the query cycles counted below into
+// seconds (the ray-query time share of `kiln render`, the per-kind query rates of `kiln profile`).
+double tsc_frequency();
+
 // A camera ray when `primary`, else an indirect (bounce) ray.
 inline bool query_intersect(const World& w, const Ray& r, Hit& hit, RayCounters& c, bool primary) {
   const uint64_t t0 = __rdtsc();

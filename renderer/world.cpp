@@ -152,9 +152,10 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     check_material(scene, s.material, s.name, s.emission.has_value());
     ShapeData sd;
     sd.material = s.material;
-    if (s.emission && !s.emission->is_black() && !(s.radius > 0.0f)) {
+    const bool emits = s.emission && !s.emission->is_black();
+    if (emits && !(s.radius > 0.0f)) {
       w.warnings.push_back(s.name + ": zero-radius light sphere emits nothing; left out of the lights");
-    } else if (s.emission && !s.emission->is_black()) {
+    } else if (emits) {
       sd.light = int(w.lights.size());
       SphereLight light(s.center, s.radius, s.to_world, *s.emission);
       light.set_course_object_space_pdf(course);

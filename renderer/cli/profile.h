@@ -53,8 +53,9 @@ struct ProfileArgs {
 struct RayKindStats {
   uint64_t count = 0;
   double mrays_per_second = 0;  // per wall-clock second of the render phase
-  // Per second of one thread's time inside accelerator queries of this kind: comparable with the single-thread
-  // rate of `kiln_bench --benchmark_filter=AccelTrace/embree` (how much Kiln adds around the accelerator).
+  // Per second of one thread's time inside accelerator queries of this kind: with --spp 1 --threads 1 on
+  // scenes/killeroo_path.xml these are the very rays `kiln_bench --benchmark_filter=AccelReplay` traces raw (how much
+  // Kiln's shading and cache traffic cost the accelerator).
   double query_mrays_per_second = 0;
 };
 

@@ -12,12 +12,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <thread>
 
 #include "core/error.h"
 #include "renderer/cli/profile.h"
 #include "renderer/integrator.h"
 #include "renderer/render.h"
+#include "renderer/ray_query.h"
 #include "renderer/world.h"
 #include "scenes/loader.h"
 #include "scenes/subdivision.h"
@@ -44,20 +44,6 @@ double load_average() {
 
 constexpr size_t kKiB = 1024;
 constexpr double kMiB = 1024.0 * 1024.0;
-// How long the TSC is compared against the steady clock to convert query cycles into seconds.
-constexpr auto kTscCalibration = std::chrono::milliseconds(20);
-
-double tsc_frequency() {
-  static const double f = [] {
-    const auto t0 = Clock::now();
-    const uint64_t c0 = __builtin_ia32_rdtsc();
-    std::this_thread::sleep_for(kTscCalibration);
-    const uint64_t c1 = __builtin_ia32_rdtsc();
-    return double(c1 - c0) / seconds_since(t0);
-  }();
-  return f;
-}
-
 // A "Name:   1234 kB" line of /proc/self/status, in bytes; 0 when unavailable.
 size_t proc_status_bytes(const char* key) {
   std::ifstream f("/proc/self/status");

@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "core/error.h"
 #include "renderer/aov.h"
@@ -17,6 +16,7 @@
 #include "renderer/progressive.h"
 #include "renderer/image_io.h"
 #include "renderer/tonemap.h"
+#include "renderer/ray_query.h"
 #include "renderer/world.h"
 #include "scenes/loader.h"
 
@@ -29,19 +29,6 @@ std::atomic<bool> g_interrupted{false};
 // agree).
 constexpr uint32_t kAovSamplesPerPixel = 4;
 extern "C" void on_signal(int) { g_interrupted.store(true); }
-
-// TSC ticks per second, measured once against the steady clock (for the ray-query time share).
-double tsc_frequency() {
-  static const double f = [] {
-    const auto t0 = std::chrono::steady_clock::now();
-    const uint64_t c0 = __builtin_ia32_rdtsc();
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    const uint64_t c1 = __builtin_ia32_rdtsc();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return double(c1 - c0) / s;
-  }();
-  return f;
-}
 
 void apply_overrides(IntegratorSettings& s, const RenderArgs& a) {
   if (a.strategy) {
@@ -287,6 +274,7 @@ int cmd_render(const RenderArgs& args) {
     write_png(png, to_ldr(img, preview_for_camera(*cd, scene)), img.width(), img.height());
 
     const double query_seconds = double(rs.rays.query_cycles()) / tsc_frequency();
+    const double query_share = query_seconds / std::max(1e-9, rs.seconds * double(tbb::this_task_arena::max_concurrency()));
     const double mrays = double(rs.rays.total()) / std::max(rs.seconds, 1e-9) / 1e6;
     if (rs.has_nan && !args.quiet)
       std::fprintf(stderr, "kiln: warning: %llu non-finite samples dropped (first at pixel %d,%d sample %llu)\n",
@@ -296,13 +284,11 @@ int cmd_render(const RenderArgs& args) {
                    "kiln: %.2fs, %.2f Mrays/s (primary %llu, shadow %llu, indirect %llu), %.0f%% of thread time in "
                    "ray queries\n",
                    rs.seconds, mrays, (unsigned long long)rs.rays.primary, (unsigned long long)rs.rays.shadow,
-                   (unsigned long long)rs.rays.indirect,
-                   100.0 * query_seconds / std::max(1e-9, rs.seconds * double(tbb::this_task_arena::max_concurrency())));
+                   (unsigned long long)rs.rays.indirect, 100.0 * query_share);
 
     std::printf("%s\n%s\n", exr.c_str(), png.c_str());
     std::fflush(stdout);
 
-    const double query_share = query_seconds / std::max(1e-9, rs.seconds * double(tbb::this_task_arena::max_concurrency()));
     nlohmann::json cam = {{"id", cd->id},
                                 {"exr", exr},
                                 {"png", png},
