@@ -181,6 +181,17 @@ std::optional<BsdfSample> Material::sample(Vec3f wo, float uc, Vec2f u) const {
   return s;
 }
 
+std::optional<BsdfSample> Material::sample_surface(Vec3f wo, float uc, Vec2f u) const {
+  if (!is_finite(wo) || !has_surface()) return std::nullopt;
+  std::optional<BsdfSample> s = surface_sample(surface, wo, clamp_unit(uc), u);
+  if (!s || !valid_sample(*s)) return std::nullopt;
+  return s;
+}
+
+float Material::pdf_surface(Vec3f wo, Vec3f wi) const {
+  return has_surface() ? surface_pdf(surface, wo, wi) : 0.0f;
+}
+
 int Material::delta_branches(Vec3f wo, DeltaBranch out[2]) const {
   SpecularBranch b[2];
   const int n = delta_branches_of(delta, wo, b);

@@ -48,6 +48,10 @@ struct Material {
   // Samples the whole material (surface and delta lobes). uc chooses the lobe, u the direction.
   // Empty when no direction could be produced; never NaN.
   std::optional<BsdfSample> sample(Vec3f wo, float uc, Vec2f u) const;
+  // Samples the surface (non-delta) part alone; the pdf does NOT include 1 - delta_probability. For integrators
+  // that follow the delta part deterministically (the course's Fresnel split). Empty without a surface part.
+  std::optional<BsdfSample> sample_surface(Vec3f wo, float uc, Vec2f u) const;
+  float pdf_surface(Vec3f wo, Vec3f wi) const;  // sample_surface's pdf
   // Probability that sample() picks the delta part: 1 with no surface BRDF, 0 with no delta part, otherwise the
   // documented mixture weight. Integrators that sample the surface part their own way (uniform / cosine) use it to
   // choose between the parts.

@@ -43,7 +43,8 @@ IntegratorSettings convergence_base_settings(const SceneDesc& scene, uint32_t fe
   IntegratorSettings s;
   s.kind = RendererKind::PathTracing;
   s.max_depth = std::max(0, scene.max_recursion_depth.value_or(kDefaultStudyDepth));
-  s.course_roulette = false;
+  s.course_roulette = CourseRoulette::Off;
+  s.split_delta = false;
   s.nee_at_last_vertex = false;
   s.rr_min_depth = kStrategyRrMinDepth;
   s.clamp = 0.0f;

@@ -30,11 +30,11 @@ Ray spawn_course_shadow_ray(const SurfaceInteraction& si, Vec3f target, float ep
 }
 
 Rgb direct_from_lights(const World& w, const IntegratorSettings& s, const SurfaceInteraction& si,
-                       const Frame& frame, Vec3f wo, Rng& rng, RayCounters& c) {
+                       const Frame& frame, Vec3f wo, Sampler& sampler, RayCounters& c) {
   Rgb sum(0.0f);
   const Vec3f wo_l = frame.to_local(wo);
   for (const Light& light : w.lights) {
-    const Vec2f u = rng.next_2d();
+    const Vec2f u = sampler.next_2d();
     const auto ls = sample_li(light, LightQuery{si.p, si.ns}, u);
     if (!ls || ls->pdf <= 0.0f || ls->li.is_black()) continue;
     if (!valid_reflection_side(si, wo, ls->wi)) continue;
@@ -48,7 +48,7 @@ Rgb direct_from_lights(const World& w, const IntegratorSettings& s, const Surfac
   return sum;
 }
 
-Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray, int depth, Rng& rng,
+Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray, int depth, Sampler& sampler,
                     RayCounters& c) {
   Hit hit;
   if (!query_intersect(w, ray, hit, c, depth == 0)) return w.background;
@@ -64,18 +64,18 @@ Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray,
   const Frame frame(si.ns);
   if (!inside_dielectric) {
     L += m.ambient * w.ambient;
-    if (m.has_surface()) L += direct_from_lights(w, s, si, frame, wo, rng, c);
+    if (m.has_surface()) L += direct_from_lights(w, s, si, frame, wo, sampler, c);
   }
   if (m.has_delta() && depth < s.max_depth) {
     DeltaBranch branches[2];
     const int n = m.delta_branches(frame.to_local(wo), branches);
     for (int i = 0; i < n; ++i) {
-      const auto wi_l = perturb(branches[i].wi, m.roughness, rng.next_2d());
+      const auto wi_l = perturb(branches[i].wi, m.roughness, sampler.next_2d());
       if (!wi_l || branches[i].weight.is_black()) continue;
       const Vec3f wi = frame.to_world(*wi_l);
       // Undo the radiance scaling: the course weighs refraction by 1 - F alone.
       const Rgb weight = branches[i].transmission ? branches[i].weight * sqr(branches[i].etap) : branches[i].weight;
-      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.course_ray_epsilon), depth + 1, rng, c);
+      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.course_ray_epsilon), depth + 1, sampler, c);
     }
   }
   return L * attenuation;
@@ -83,8 +83,8 @@ Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray,
 
 }  // namespace
 
-Rgb trace_direct(const World& world, const IntegratorSettings& s, const Ray& ray, Rng& rng, RayCounters& c) {
-  return trace_recursive(world, s, ray, 0, rng, c);
+Rgb trace_direct(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c) {
+  return trace_recursive(world, s, ray, 0, sampler, c);
 }
 
 }  // namespace kiln

@@ -24,9 +24,9 @@ IntegratorSettings settings_for_camera(const CameraDesc& camera, const SceneDesc
     s.nee = camera.pt.next_event_estimation;
     s.mis = false;
     s.russian_roulette = camera.pt.russian_roulette;
-    s.course_roulette = camera.pt.russian_roulette;
-    s.rr_min_depth = 0;
+    s.course_roulette = camera.pt.russian_roulette ? CourseRoulette::Literal : CourseRoulette::Off;
     s.nee_at_last_vertex = true;
+    s.split_delta = true;
     s.max_depth = camera.pt.russian_roulette ? -1 : scene.max_recursion_depth.value_or(kDefaultMaxDepth);
     return s;
   }
@@ -43,7 +43,10 @@ std::string IntegratorSettings::describe() const {
                   : directions == DirectionSampling::Cosine ? "cosine"
                                                             : "brdf";
   std::string s = "path tracing: " + d + (nee ? (mis ? "+nee+mis" : "+nee") : "") +
-                  (russian_roulette ? (course_roulette ? "+rr(course)" : "+rr") : "");
+                  (russian_roulette ? "+rr" : "") + (split_delta ? "+fresnel-split" : "") +
+                  (course_roulette == CourseRoulette::Expected  ? "+course-rr-weights"
+                   : course_roulette == CourseRoulette::Literal ? "+course-rr(literal)"
+                                                                : "");
   s += ", max depth " + (max_depth < 0 ? std::string("unlimited") : std::to_string(max_depth));
   return s;
 }

@@ -4,12 +4,19 @@
 #include <cstdint>
 #include <string>
 
-#include "core/rng.h"
+#include "core/sampler.h"
 #include "renderer/world.h"
 
 namespace kiln {
 
 enum class DirectionSampling { Uniform, Cosine, Brdf };
+
+// How a CENG795 scene's RussianRoulette is rendered (README, "Course path-tracing semantics"). The course's
+// roulette over-weights the direct light of vertex k by 2 - p_k (p_k: the survival probability it derives from
+// the path's BRDF values). Expected renders that expectation with Kiln's unbiased throughput roulette, i.e. the
+// same image with finite variance; Literal replays the course's own roulette (same expectation, its fireflies:
+// survivors carry weights that grow like (pi/kd)^(k(k+1)/2), so its variance is unbounded).
+enum class CourseRoulette { Off, Expected, Literal };
 
 struct IntegratorSettings {
   RendererKind kind = RendererKind::PathTracing;
@@ -17,7 +24,8 @@ struct IntegratorSettings {
   bool nee = true;
   bool mis = true;                // combine NEE and BRDF sampling with the power heuristic (needs nee)
   bool russian_roulette = true;
-  bool course_roulette = false;   // course semantics: roulette replaces the depth cap (spec §11)
+  CourseRoulette course_roulette = CourseRoulette::Off;  // course semantics: roulette replaces the depth cap
+  bool split_delta = false;       // course rule: follow every Fresnel branch of mirror / glass (spec §11)
   int max_depth = 8;              // bounces after the camera ray; < 0: unlimited (only with roulette)
   int rr_min_depth = 3;           // Kiln's roulette starts after this many bounces
   bool nee_at_last_vertex = false;  // course rule: the vertex at max_depth still samples lights (README)
@@ -49,12 +57,18 @@ struct RayCounters {
 // Settings for a camera: the scene's Renderer/RendererParams, MaxRecursionDepth and Kiln's defaults.
 IntegratorSettings settings_for_camera(const CameraDesc& camera, const SceneDesc& scene);
 
-// Radiance along a camera ray.
-Rgb trace_direct(const World& world, const IntegratorSettings& s, const Ray& ray, Rng& rng, RayCounters& c);
-Rgb trace_path(const World& world, const IntegratorSettings& s, const Ray& ray, Rng& rng, RayCounters& c);
+// Sampler dimensions (core/sampler.h): the pixel position and lens come first, then each path vertex takes the
+// same kDimensionsPerVertex requests, so that a given request is stratified across the samples of a pixel.
+inline constexpr uint32_t kPixelDimension = 0;
+inline constexpr uint32_t kLensDimension = 1;
+inline constexpr uint32_t kFirstPathDimension = 2;
 
-inline Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Rng& rng, RayCounters& c) {
-  return s.kind == RendererKind::PathTracing ? trace_path(world, s, ray, rng, c) : trace_direct(world, s, ray, rng, c);
+// Radiance along a camera ray (the sampler is positioned at kFirstPathDimension).
+Rgb trace_direct(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c);
+Rgb trace_path(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c);
+
+inline Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c) {
+  return s.kind == RendererKind::PathTracing ? trace_path(world, s, ray, sampler, c) : trace_direct(world, s, ray, sampler, c);
 }
 
 }  // namespace kiln

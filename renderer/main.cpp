@@ -29,6 +29,12 @@ int main(int argc, char** argv) {
                      "Override the scene's integrator: uniform, cosine, brdf (no NEE), nee, mis (NEE + BRDF, power "
                      "heuristic) or direct (course ray tracer)");
   render->add_option("--rr", ra.rr, "Russian roulette on/off (true/false)");
+  render->add_option("--course-roulette", ra.course_roulette,
+                     "How CENG795 RussianRoulette cameras are rendered: literal (default: the course's own coin flips, "
+                     "so a render at the scene's spp looks like the course's; unbounded variance) or expected (the "
+                     "same expected image with finite variance: the course's weights, ended by Kiln's unbiased "
+                     "roulette)")
+      ->check(CLI::IsMember({"expected", "literal"}));
   render->add_option("--max-depth", ra.max_depth, "Maximum bounces after the camera ray (-1: unlimited, needs --rr)");
   render->add_option("--clamp", ra.clamp, "Clamp per-sample radiance to this maximum (biased; 0 = off)")->capture_default_str();
   render->add_option("--subdivide", ra.subdivide, "Loop-subdivide every mesh this many times");

@@ -5,10 +5,10 @@
 // wave's time per sample and the render stops before a wave that would overrun the budget (at least 1 spp is
 // always rendered).
 //
-// Every prefix of waves must be an unbiased estimate of the pixel integral, so pixel positions use plain jitter
-// over the whole pixel for every sample (RenderOptions::spp_total is overridden with kProgressiveSppTotal): the
-// fixed-spp renderer's sqrt(n) x sqrt(n) stratification would leave early waves covering only the top rows of
-// each pixel. The converged image is the same pixel (box) integral as a stratified render's.
+// Every prefix of waves must be an unbiased estimate of the pixel integral, so RenderOptions::spp_total is
+// overridden with kProgressiveSppTotal: the course's 1-spp pixel-centre convention never applies. Nothing is lost to
+// the waves: the sampler's points (core/sampler.h) make the first 2^k samples of every pixel a stratified net, which
+// is exactly what each doubling wave completes.
 #pragma once
 #include <cstdint>
 #include <functional>

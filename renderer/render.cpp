@@ -14,18 +14,11 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
-// Pixel sample position: the centre for 1 spp; otherwise stratified over a sqrt(n) x sqrt(n) grid for the first
-// n^2 sample indices (jittered inside each stratum), then plain jitter. Depends only on the absolute sample
-// index, so spp ranges rendered separately merge into the same image.
-Vec2f pixel_offset(uint64_t sample, uint32_t spp_total, Rng& rng) {
-  if (spp_total <= 1) return {0.5f, 0.5f};
-  const uint32_t n = uint32_t(std::sqrt(double(spp_total)));
-  const Vec2f j = rng.next_2d();
-  if (sample < uint64_t(n) * n) {
-    const float sx = float(sample % n), sy = float(sample / n);
-    return {(sx + j.x) / float(n), (sy + j.y) / float(n)};
-  }
-  return j;
+// Pixel sample position: the centre for 1 spp (the course's convention), otherwise the sampler's first
+// dimension, stratified over the pixel's samples.
+Vec2f pixel_offset(uint32_t spp_total, Sampler& sampler) {
+  sampler.set_dimension(kPixelDimension);
+  return spp_total <= 1 ? Vec2f{0.5f, 0.5f} : sampler.next_2d();
 }
 
 class Progress {
@@ -93,11 +86,13 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
           }
           PixelSum& px = film.at(x, y);
           for (uint32_t s = first; s < last; ++s) {
-            Rng rng = pixel_sample_rng(options.seed, uint32_t(x), uint32_t(y), s);
-            const Vec2f off = pixel_offset(s, options.spp_total, rng);
-            const Vec2f lens = rng.next_2d();
+            Sampler sampler(options.seed, uint32_t(x), uint32_t(y), s);
+            const Vec2f off = pixel_offset(options.spp_total, sampler);
+            sampler.set_dimension(kLensDimension);
+            const Vec2f lens = sampler.next_2d();
             const Ray ray = camera.generate_ray(float(x) + off.x, float(y) + off.y, lens);
-            Rgb L = trace(world, settings, ray, rng, st.rays);
+            sampler.set_dimension(kFirstPathDimension);
+            Rgb L = trace(world, settings, ray, sampler, st.rays);
             if (!L.is_finite() || L.has_negative()) {
               if (!st.has_nan) {
                 st.has_nan = true;

@@ -24,6 +24,7 @@ struct RenderArgs {
   // Integrator overrides.
   std::optional<std::string> strategy;  // uniform | cosine | brdf | nee | mis
   std::optional<bool> rr;
+  std::optional<std::string> course_roulette;  // expected | literal (CENG795 RussianRoulette cameras only)
   std::optional<int> max_depth;
   float clamp = 0.0f;
   bool all_features = false;

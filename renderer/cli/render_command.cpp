@@ -34,7 +34,8 @@ void apply_overrides(IntegratorSettings& s, const RenderArgs& a) {
   if (a.strategy) {
     const std::string& st = *a.strategy;
     s.kind = RendererKind::PathTracing;
-    s.course_roulette = false;
+    s.course_roulette = CourseRoulette::Off;
+    s.split_delta = false;
     if (s.max_depth < 0) s.max_depth = 8;
     if (st == "uniform" || st == "cosine" || st == "brdf") {
       s.directions = st == "uniform" ? DirectionSampling::Uniform
@@ -56,7 +57,12 @@ void apply_overrides(IntegratorSettings& s, const RenderArgs& a) {
   }
   if (a.rr) {
     s.russian_roulette = *a.rr;
-    if (!*a.rr) s.course_roulette = false;
+    if (!*a.rr) s.course_roulette = CourseRoulette::Off;
+  }
+  if (a.course_roulette && s.course_roulette != CourseRoulette::Off) {
+    if (*a.course_roulette == "expected") s.course_roulette = CourseRoulette::Expected;
+    else if (*a.course_roulette == "literal") s.course_roulette = CourseRoulette::Literal;
+    else throw Error("--course-roulette", "", "unknown mode '" + *a.course_roulette + "' (expected, literal)");
   }
   if (a.max_depth) s.max_depth = *a.max_depth;
   if (s.max_depth < 0 && !s.russian_roulette) throw Error("--max-depth", "", "unlimited depth needs --rr");

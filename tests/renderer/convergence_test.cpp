@@ -42,7 +42,7 @@ TEST(Convergence, StrategyNamesShareTheTransportRules) {
   const IntegratorSettings base = convergence_base_settings(scene, kFeatureAll);
   EXPECT_EQ(base.kind, RendererKind::PathTracing);
   EXPECT_EQ(base.max_depth, 3);
-  EXPECT_FALSE(base.course_roulette);
+  EXPECT_EQ(base.course_roulette, CourseRoulette::Off);
   EXPECT_FALSE(base.nee_at_last_vertex);
   EXPECT_EQ(base.rr_min_depth, kStrategyRrMinDepth);
   EXPECT_EQ(convergence_base_settings(SceneDesc{}, kFeatureAll).max_depth, 8);

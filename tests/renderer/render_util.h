@@ -68,10 +68,11 @@ inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const
   RayCounters c;
   double sum = 0, sum2 = 0;
   for (uint32_t i = 0; i < n; ++i) {
-    Rng rng = pixel_sample_rng(seed, i % 64, i / 64, i);
-    const Vec2f px = rng.next_2d();
-    const Ray ray = cam.generate_ray(px.x * float(cam.width()), px.y * float(cam.height()), rng.next_2d());
-    const double v = trace(w, s, ray, rng, c).r;
+    Sampler sampler(seed, i % 64, i / 64, i);
+    const Vec2f px = sampler.next_2d();
+    const Ray ray = cam.generate_ray(px.x * float(cam.width()), px.y * float(cam.height()), sampler.next_2d());
+    sampler.set_dimension(kFirstPathDimension);
+    const double v = trace(w, s, ray, sampler, c).r;
     sum += v;
     sum2 += v * v;
   }

@@ -91,15 +91,19 @@ TEST_P(Stiff, DielectricsVanishInAFurnace) {
   constexpr int kDeepDepth = 24;
   SceneDesc s = furnace_with_glass(kResolution);
   const auto w = build_world(s, world_options());
-  IntegratorSettings st = unbounded(DirectionSampling::Brdf, true, true, *w);
-  st.russian_roulette = false;
-  st.max_depth = kDeepDepth;
-  const Rendered r = render_film(*w, s.cameras[0], st, 64);
-  EXPECT_EQ(r.stats.rays.nan_samples, 0u);
-  EXPECT_TRUE(all_finite_non_negative(r.mean()));
-  const MeanEstimate m = film_mean(r.film);
-  EXPECT_NEAR(m.mean, kFurnaceRadiance, kMaxMeanZ * m.se + 1e-4) << "+- " << m.se;
-  EXPECT_LT(max_abs(block_z(r.film, kBlock, kFurnaceRadiance)), kMaxBlockZ);
+  // Also with the course's Fresnel split (both branches followed, each with its weight) instead of sampling one.
+  for (const bool split : {false, true}) {
+    IntegratorSettings st = unbounded(DirectionSampling::Brdf, true, true, *w);
+    st.russian_roulette = false;
+    st.max_depth = kDeepDepth;
+    st.split_delta = split;
+    const Rendered r = render_film(*w, s.cameras[0], st, 64);
+    EXPECT_EQ(r.stats.rays.nan_samples, 0u);
+    EXPECT_TRUE(all_finite_non_negative(r.mean()));
+    const MeanEstimate m = film_mean(r.film);
+    EXPECT_NEAR(m.mean, kFurnaceRadiance, kMaxMeanZ * m.se + 1e-4) << "split " << split << ": +- " << m.se;
+    EXPECT_LT(max_abs(block_z(r.film, kBlock, kFurnaceRadiance)), kMaxBlockZ) << "split " << split;
+  }
 }
 
 // Why: the same furnace with unbounded depth and Russian roulette: still unbiased and finite. Only the image mean
