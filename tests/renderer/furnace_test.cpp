@@ -149,6 +149,54 @@ TEST(Furnace, UnitRadiance) {
   EXPECT_NEAR(e.mean, 1.0, 4.5 * e.stderr_ + 1e-4);
 }
 
+// The pbrt-style unit sphere: a closed emitter of radiance 1 - a and albedo a seen from inside gives exactly 1, for
+// any shape, so also for an ellipsoid. Kiln's LightSphere emits outward only (the course's definition), so this is a
+// tessellated sphere whose triangles emit inward (their areas differ by ~8x, more under the ellipsoid's scale).
+// Without NEE the answer does not depend on the shape; with NEE the light samples of a curved, unequal mesh do.
+SceneDesc furnace_sphere(float albedo, Vec3f scale) {
+  constexpr int kRings = 24, kSegments = 48;
+  SceneDesc s = furnace_box(albedo, Rgb(1.0f - albedo));
+  MeshDesc& m = s.meshes[0];
+  m.name = "unit sphere";
+  m.positions.clear();
+  m.indices.clear();
+  for (int i = 0; i <= kRings; ++i)
+    for (int j = 0; j < kSegments; ++j) {
+      const float theta = kPi * float(i) / kRings, phi = 2.0f * kPi * float(j) / kSegments;
+      const Vec3f p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      m.positions.push_back(Vec3f(p.x * scale.x, p.y * scale.y, p.z * scale.z));
+    }
+  auto vertex = [&](int i, int j) { return uint32_t(i * kSegments + (j % kSegments)); };
+  auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
+    const Vec3f pa = m.positions[a], pb = m.positions[b], pc = m.positions[c];
+    if (length(cross(pb - pa, pc - pa)) == 0.0f) return;  // the poles' degenerate triangles
+    // Wound so that (v1-v0)x(v2-v0) points to the centre: the emitting side faces inward.
+    if (dot(cross(pb - pa, pc - pa), pa + pb + pc) > 0.0f) std::swap(b, c);
+    m.indices.insert(m.indices.end(), {a, b, c});
+  };
+  for (int i = 0; i < kRings; ++i)
+    for (int j = 0; j < kSegments; ++j) {
+      add(vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1));
+      add(vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1));
+    }
+  return s;
+}
+
+TEST(Furnace, UnitSphereAndEllipsoidGiveOne) {
+  const FurnaceCase cases[] = {{"uniform_rr", DirectionSampling::Uniform, false, false, true, -1},
+                               {"cosine_rr", DirectionSampling::Cosine, false, false, true, -1},
+                               {"nee_rr", DirectionSampling::Brdf, true, false, true, -1},
+                               {"mis_rr", DirectionSampling::Brdf, true, true, true, -1}};
+  for (const Vec3f scale : {Vec3f(1.0f), Vec3f(1.0f, 0.5f, 2.0f)})
+    for (const FurnaceCase& fc : cases) {
+      const SceneDesc scene = furnace_sphere(0.7f, scale);
+      const auto world = build_world(scene, {});
+      const Estimate e = estimate_mean(*world, settings_of(fc), scene.cameras[0], 200000);
+      EXPECT_NEAR(e.mean, 1.0, 4.5 * e.stderr_ + 1e-4)
+          << fc.name << (scale.y != 1.0f ? " ellipsoid" : " sphere") << ": mean " << e.mean << " +- " << e.stderr_;
+    }
+}
+
 // The test must be able to fail: a deliberately wrong answer (one bounce fewer) is rejected.
 TEST(Furnace, DetectsAMissingBounce) {
   const SceneDesc scene = furnace_box(0.5f, Rgb(1.0f));
