@@ -164,7 +164,7 @@ SceneDesc furnace_sphere(float albedo, Vec3f scale) {
     for (int j = 0; j < kSegments; ++j) {
       const float theta = kPi * float(i) / kRings, phi = 2.0f * kPi * float(j) / kSegments;
       const Vec3f p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-      m.positions.push_back(Vec3f(p.x * scale.x, p.y * scale.y, p.z * scale.z));
+      m.positions.push_back(p * scale);
     }
   auto vertex = [&](int i, int j) { return uint32_t(i * kSegments + (j % kSegments)); };
   auto add = [&](uint32_t a, uint32_t b, uint32_t c) {

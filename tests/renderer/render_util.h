@@ -2,6 +2,8 @@
 #pragma once
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -61,6 +63,14 @@ struct Estimate {
   double mean = 0, stderr_ = 0;
 };
 
+// Mean and standard error of n samples from their sum and sum of squares.
+inline Estimate estimate_from_sums(double sum, double sum2, double n) {
+  Estimate e;
+  e.mean = sum / n;
+  e.stderr_ = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / (n - 1.0));
+  return e;
+}
+
 // Mean luminance-free (red channel) estimate over n independent camera samples through random pixels.
 inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const CameraDesc& cd, uint32_t n,
                               uint64_t seed = 7) {
@@ -76,10 +86,7 @@ inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const
     sum += v;
     sum2 += v * v;
   }
-  Estimate e;
-  e.mean = sum / n;
-  e.stderr_ = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / (n - 1.0));
-  return e;
+  return estimate_from_sums(sum, sum2, n);
 }
 
 // Renders camera 0 of a scene in full (optionally cropped/resized by the caller through the SceneDesc).

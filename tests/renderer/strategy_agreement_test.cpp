@@ -7,8 +7,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
+#include "renderer/convergence.h"
 #include "stability_util.h"
 
 namespace kiln::test {
@@ -31,15 +33,11 @@ constexpr uint32_t kReferenceSamplesPerPixel = 16384;
 // the stratified samples of a pixel (hence the small |z| above).
 constexpr double kZBound = 4.5;
 
-struct BlockEstimate {
-  double mean = 0, stderr_ = 0;
-};
-
 // Mean luminance of each block over samples spread evenly over its pixels, with its standard error.
-std::vector<BlockEstimate> block_estimates(const World& w, const CameraDesc& cd, const IntegratorSettings& s,
+std::vector<Estimate> block_estimates(const World& w, const CameraDesc& cd, const IntegratorSettings& s,
                                            uint32_t spp, uint64_t seed) {
   const Camera cam(cd);
-  std::vector<BlockEstimate> out(kBlocksPerSide * kBlocksPerSide);
+  std::vector<Estimate> out(kBlocksPerSide * kBlocksPerSide);
   tbb::parallel_for(0, int(out.size()), [&](int b) {
     const int bx = b % kBlocksPerSide, by = b / kBlocksPerSide;
     RayCounters c;
@@ -56,30 +54,9 @@ std::vector<BlockEstimate> block_estimates(const World& w, const CameraDesc& cd,
           sum += v;
           sum2 += v * v;
         }
-    const double n = double(kBlock * kBlock) * spp;
-    out[size_t(b)].mean = sum / n;
-    out[size_t(b)].stderr_ = std::sqrt(std::max(0.0, sum2 / n - out[size_t(b)].mean * out[size_t(b)].mean) / (n - 1));
+    out[size_t(b)] = estimate_from_sums(sum, sum2, double(kBlock * kBlock) * spp);
   });
   return out;
-}
-
-struct Strategy {
-  const char* name;
-  DirectionSampling dirs;
-  bool nee, mis, rr;
-};
-
-IntegratorSettings settings_of(const Strategy& st, uint32_t features) {
-  IntegratorSettings s;
-  s.kind = RendererKind::PathTracing;
-  s.directions = st.dirs;
-  s.nee = st.nee;
-  s.mis = st.mis;
-  s.russian_roulette = st.rr;
-  s.rr_min_depth = 1;  // roulette from the first bounce: the harshest test of its compensation
-  s.max_depth = kMaxDepth;
-  s.features = features;
-  return s;
 }
 
 // The largest |z| over blocks between two sets of block estimates, and where it occurred.
@@ -87,7 +64,7 @@ struct Worst {
   double z = 0;
   int block = -1;
 };
-Worst worst_block(const std::vector<BlockEstimate>& a, const std::vector<BlockEstimate>& b) {
+Worst worst_block(const std::vector<Estimate>& a, const std::vector<Estimate>& b) {
   Worst w;
   for (size_t i = 0; i < a.size(); ++i) {
     const double se = std::hypot(a[i].stderr_, b[i].stderr_);
@@ -113,47 +90,52 @@ class StrategyAgreement : public ::testing::Test {
       }
     }
     world_ = build_world(scene_, {});
-    reference_ = block_estimates(*world_, scene_.cameras[0], settings_of(kReference, world_->features),
-                                 kReferenceSamplesPerPixel, kReferenceSeed);
+    base_.kind = RendererKind::PathTracing;
+    base_.max_depth = kMaxDepth;
+    base_.rr_min_depth = 1;  // roulette from the first bounce: the harshest test of its compensation
+    base_.features = world_->features;
+    reference_ = block_estimates(*world_, scene_.cameras[0], settings("mis"), kReferenceSamplesPerPixel, kReferenceSeed);
   }
-  static constexpr Strategy kReference{"mis", DirectionSampling::Brdf, true, true, false};
+  // A strategy of `kiln converge` (uniform, cosine, brdf, nee, mis, optionally +rr) with this test's depth.
+  IntegratorSettings settings(const char* strategy) const { return make_strategy(strategy, base_).settings; }
   static constexpr uint64_t kReferenceSeed = 1000;
   static constexpr float kLightHalf = 160.0f;     // grid units; the box's half-size is 256
   static constexpr float kLightRadiance = 2.5f;
   SceneDesc scene_;
   std::unique_ptr<World> world_;
-  std::vector<BlockEstimate> reference_;
+  IntegratorSettings base_;
+  std::vector<Estimate> reference_;
 };
 
 TEST_F(StrategyAgreement, EveryStrategyMatchesMisBlockByBlock) {
-  const Strategy strategies[] = {{"uniform", DirectionSampling::Uniform, false, false, false},
-                                 {"cosine", DirectionSampling::Cosine, false, false, false},
-                                 {"brdf", DirectionSampling::Brdf, false, false, false},
-                                 {"nee", DirectionSampling::Brdf, true, false, false},
-                                 {"nee_uniform", DirectionSampling::Uniform, true, false, false},
-                                 {"mis_uniform", DirectionSampling::Uniform, true, true, false},
-                                 {"uniform+rr", DirectionSampling::Uniform, false, false, true},
-                                 {"brdf+rr", DirectionSampling::Brdf, false, false, true},
-                                 {"nee+rr", DirectionSampling::Brdf, true, false, true},
-                                 {"mis+rr", DirectionSampling::Brdf, true, true, true}};
+  // NEE and MIS also with uniform hemisphere directions, which `kiln converge` does not name.
+  struct Case {
+    const char* strategy;
+    bool uniform_directions = false;
+  };
+  const Case cases[] = {{"uniform"}, {"cosine"}, {"brdf"}, {"nee"}, {"nee", true},
+                        {"mis", true}, {"uniform+rr"}, {"brdf+rr"}, {"nee+rr"}, {"mis+rr"}};
   uint64_t seed = 1;
-  for (const Strategy& st : strategies) {
-    const uint32_t spp = st.nee ? kSamplesPerPixelWithNee : kSamplesPerPixelWithoutNee;
-    const auto blocks = block_estimates(*world_, scene_.cameras[0], settings_of(st, world_->features), spp, seed++);
+  for (const Case& c : cases) {
+    IntegratorSettings s = settings(c.strategy);
+    if (c.uniform_directions) s.directions = DirectionSampling::Uniform;
+    const std::string name = std::string(c.strategy) + (c.uniform_directions ? "_uniform" : "");
+    const uint32_t spp = s.nee ? kSamplesPerPixelWithNee : kSamplesPerPixelWithoutNee;
+    const auto blocks = block_estimates(*world_, scene_.cameras[0], s, spp, seed++);
     const Worst w = worst_block(blocks, reference_);
-    ASSERT_GE(w.block, 0) << st.name;
-    const BlockEstimate& got = blocks[size_t(w.block)];
-    const BlockEstimate& want = reference_[size_t(w.block)];
-    EXPECT_LT(w.z, kZBound) << st.name << ": block " << w.block << " mean " << got.mean << " +- " << got.stderr_
+    ASSERT_GE(w.block, 0) << name;
+    const Estimate& got = blocks[size_t(w.block)];
+    const Estimate& want = reference_[size_t(w.block)];
+    EXPECT_LT(w.z, kZBound) << name << ": block " << w.block << " mean " << got.mean << " +- " << got.stderr_
                             << ", mis " << want.mean << " +- " << want.stderr_;
-    std::printf("%-12s worst block %2d at |z| = %.1f\n", st.name, w.block, w.z);
+    std::printf("%-12s worst block %2d at |z| = %.1f\n", name.c_str(), w.block, w.z);
   }
 }
 
 // The comparison can fail: one bounce fewer (what a wrong depth count, a lost NEE contribution or a doubly counted
 // emitter would resemble) is rejected at the same bound.
 TEST_F(StrategyAgreement, DetectsAMissingBounce) {
-  IntegratorSettings s = settings_of({"cosine", DirectionSampling::Cosine, false, false, false}, world_->features);
+  IntegratorSettings s = settings("cosine");
   s.max_depth = kMaxDepth - 1;
   const auto blocks = block_estimates(*world_, scene_.cameras[0], s, kSamplesPerPixelWithoutNee, 77);
   const Worst w = worst_block(blocks, reference_);
