@@ -308,6 +308,7 @@ SceneDesc load_cs171_json(const std::string& path) {
   SceneDesc scene;
   scene.source_path = path;
   scene.format = "cs171-json";
+  scene.rules = SceneRules::Cs171Course;
   scene.png_gamma_encode = true;  // the framework writes pow(L, 1/2.2) to its PNG
   ConfigReader r(path, scene);
 

@@ -23,6 +23,21 @@ struct TonemapDesc {
 
 enum class RendererKind { RayTracing, PathTracing };
 
+// Whose rules render the scene by default (README, "Two rule sets"): Kiln's own (MIS, unbiased roulette, exact
+// pdfs) or the conventions of a course's reference renderer, which reproduce that course's reference images. The
+// loader that knows the file sets it; `--rules` overrides it; nothing else decides it.
+enum class SceneRules { Kiln, Ceng795Course, Cs171Course };
+
+// Pixel reconstruction filter, sampled by filter importance sampling (pbrt-v4): the pixel's samples are drawn
+// with density proportional to |filter| and weighted by its sign, so no sample is shared between pixels.
+enum class PixelFilterKind { Box, Triangle, Gaussian, BlackmanHarris, Mitchell };
+struct PixelFilterDesc {
+  PixelFilterKind kind = PixelFilterKind::Box;
+  float radius = 0.5f;        // pixels, in x and y
+  float sigma = 0.5f;         // Gaussian standard deviation (pixels)
+  float b = 1.0f / 3.0f, c = 1.0f / 3.0f;  // Mitchell-Netravali B, C
+};
+
 struct PathTracingFlags {
   bool importance_sampling = false;
   bool next_event_estimation = false;
@@ -48,6 +63,7 @@ struct CameraDesc {
   RendererKind renderer = RendererKind::RayTracing;
   bool renderer_explicit = false;  // the scene named a renderer (else Kiln's default applies)
   PathTracingFlags pt;
+  std::optional<PixelFilterDesc> filter;  // the scene's pixel filter (pbrt PixelFilter); else the rules' default
 };
 
 enum class BrdfKind { OriginalPhong, ModifiedPhong, OriginalBlinnPhong, ModifiedBlinnPhong, TorranceSparrow, Lambert };
@@ -63,6 +79,25 @@ struct BrdfDesc {
 
 enum class MaterialType { Plain, Mirror, Dielectric, Conductor };
 
+// pbrt-v4 materials (scenes/pbrt_loader fills this, scenes/material_mapping builds it). Spectral parameters are
+// already reduced to linear RGB by the loader.
+enum class PbrtMaterialKind { Diffuse, Conductor, Dielectric, CoatedDiffuse, Interface };
+struct PbrtMaterialDesc {
+  PbrtMaterialKind kind = PbrtMaterialKind::Diffuse;
+  Rgb reflectance{0.5f};                     // diffuse, coateddiffuse
+  std::optional<Rgb> conductor_reflectance;  // conductor given by "reflectance" instead of eta / k
+  Rgb conductor_eta{0.2f, 0.92f, 1.1f};      // conductor complex IOR (pbrt's default is copper)
+  Rgb conductor_k{3.91f, 2.45f, 2.14f};
+  float eta = 1.5f;                          // dielectric / coateddiffuse interface IOR
+  float uroughness = 0.0f, vroughness = 0.0f;  // as written in the file ("roughness" sets both)
+  bool remap_roughness = true;
+  float thickness = 0.01f;                   // coateddiffuse layer
+  Rgb albedo{0.0f};                          // coateddiffuse medium albedo
+  float g = 0.0f;                            // coateddiffuse Henyey-Greenstein asymmetry
+  int max_depth = 10;                        // coateddiffuse random-walk length
+  int n_samples = 1;                         // coateddiffuse estimator samples
+};
+
 struct MaterialDesc {
   int id = 0;
   std::optional<int> brdf;  // index into SceneDesc::brdfs (not the XML id)
@@ -76,6 +111,7 @@ struct MaterialDesc {
   float absorption_index = 0.0f;  // conductor kappa
   bool degamma = false;
   bool has_refraction_index = false;
+  std::optional<PbrtMaterialDesc> pbrt;  // set by the pbrt-v4 loader; the fields above are then unused
 };
 
 // Triangle mesh in object space. Indices are 0-based triplets into positions.
@@ -129,7 +165,8 @@ struct EnvLightDesc { std::string image_path; };
 
 struct SceneDesc {
   std::string source_path;  // file it was loaded from
-  std::string format;       // "ceng795-xml", "cs171-json", "ply", "obj"
+  std::string format;       // "ceng795-xml", "cs171-json", "ply", "obj": for messages only, never for decisions
+  SceneRules rules = SceneRules::Kiln;
   Rgb background{0};
   std::optional<float> shadow_ray_epsilon;
   std::optional<float> intersection_test_epsilon;

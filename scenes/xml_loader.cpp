@@ -98,6 +98,7 @@ class XmlLoader {
 
     scene_.source_path = file_;
     scene_.format = "ceng795-xml";
+    scene_.rules = SceneRules::Ceng795Course;
     warn_unknown_children(root_, kSceneChildren);
     // Fixed processing order: the files do not order their top-level elements consistently.
     read_globals();
