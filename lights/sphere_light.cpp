@@ -101,8 +101,8 @@ struct SphereLight::Local {
   bool inside;     // inside or on the surface
 };
 
-SphereLight::SphereLight(Vec3f center, float radius, const Transform& to_world, Rgb radiance)
-    : center_(center), radius_(radius), radiance_(radiance) {
+SphereLight::SphereLight(Vec3f center, float radius, const Transform& to_world, Rgb radiance, EllipsoidPdf density)
+    : center_(center), radius_(radius), radiance_(radiance), course_pdf_(density == EllipsoidPdf::CourseObjectSpace) {
   if (!(radius > 0.0f) || !std::isfinite(radius)) throw Error("LightSphere: Radius must be positive");
   to_world_ = affine_of(to_world.matrix());
   to_object_ = affine_of(to_world.inverse_matrix());

@@ -14,10 +14,16 @@
 
 namespace kiln {
 
+// The density light samples of an ellipsoid are divided by. The CENG795 course renderer divides by the OBJECT-space
+// cone pdf (spec §14.13), which is biased under non-uniform scale; its reference images need that. Kiln's own rules
+// use the exact world-space density. Spheres (uniform scale) are exact either way.
+enum class EllipsoidPdf { Exact, CourseObjectSpace };
+
 class SphereLight {
  public:
   // Throws kiln::Error when radius is not positive or to_world is singular.
-  SphereLight(Vec3f center, float radius, const Transform& to_world, Rgb radiance);
+  SphereLight(Vec3f center, float radius, const Transform& to_world, Rgb radiance,
+              EllipsoidPdf density = EllipsoidPdf::Exact);
 
   std::optional<LightSample> sample_li(const LightQuery& q, Vec2f u) const;
   // Density of sample_li towards p_light. From outside it depends only on the direction q -> p_light (0 when that
@@ -32,9 +38,6 @@ class SphereLight {
   // pi * area * lum(L) for an outward Lambertian emitter.
   float power() const { return kPi * surface_area_ * radiance_.luminance(); }
   static constexpr bool kDelta = false;
-  // The CENG795 course renderer divides ellipsoid-light samples by the OBJECT-space cone pdf (spec §14.13), which
-  // is biased under non-uniform scale; its reference images need that convention. Off by default (exact density).
-  void set_course_object_space_pdf(bool on) { course_pdf_ = on; }
 
   // Exact for spheres (including uniformly scaled ones); Knud Thomsen's approximation (error < ~1.1%) for
   // ellipsoids.

@@ -127,6 +127,37 @@ bool valid_sample(const BsdfSample& s) {
 
 uint32_t Material::flags() const { return surface_flags(surface) | delta_flags(delta); }
 
+namespace {
+
+const char* variant_suffix(PhongVariant v) {
+  switch (v) {
+    case PhongVariant::Original: return "(original)";
+    case PhongVariant::Modified: return "(modified)";
+    case PhongVariant::ModifiedNormalized: return "(normalized)";
+  }
+  return "";
+}
+
+std::string name_of(const NoSurface&) { return ""; }
+std::string name_of(const Lambert&) { return "lambert"; }
+std::string name_of(const Phong& b) { return std::string("phong") + variant_suffix(b.variant); }
+std::string name_of(const BlinnPhong& b) { return std::string("blinn-phong") + variant_suffix(b.variant); }
+std::string name_of(const TorranceSparrow&) { return "torrance-sparrow"; }
+std::string name_of(const NoDelta&) { return ""; }
+std::string name_of(const Mirror&) { return "mirror"; }
+std::string name_of(const Dielectric&) { return "dielectric"; }
+std::string name_of(const Conductor&) { return "conductor"; }
+
+}  // namespace
+
+std::string Material::describe() const {
+  const std::string s = std::visit([](const auto& b) { return name_of(b); }, surface);
+  std::string d = std::visit([](const auto& b) { return name_of(b); }, delta);
+  if (!d.empty() && roughness > 0.0f) d = "rough-" + d;
+  if (s.empty() && d.empty()) return "none";
+  return s.empty() ? d : d.empty() ? s : s + "+" + d;
+}
+
 Rgb Material::eval(Vec3f wo, Vec3f wi) const {
   if (!has_surface()) return Rgb(0.0f);
   return surface_eval(surface, wo, wi);

@@ -3,6 +3,7 @@
 // (cos theta = w.z, wo and the geometric side on +z unless transmission is involved).
 #pragma once
 #include <optional>
+#include <string>
 #include <variant>
 
 #include "materials/bsdf_sample.h"
@@ -63,6 +64,8 @@ struct Material {
   // the caller through perturb(). Returns the count written to out.
   int delta_branches(Vec3f wo, DeltaBranch out[2]) const;
   Rgb transmittance(float distance) const { return exp(absorption * (-distance)); }
+  // What the material compiled to, e.g. "lambert", "blinn-phong(original)+mirror", "dielectric" (kiln --stats).
+  std::string describe() const;
 };
 
 }  // namespace kiln

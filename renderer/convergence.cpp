@@ -13,9 +13,6 @@
 namespace kiln {
 namespace {
 
-// Kiln's path-tracing depth when the scene gives no MaxRecursionDepth (as settings_for_camera).
-constexpr int kDefaultStudyDepth = 8;
-constexpr char kRrSuffix[] = "+rr";
 
 struct Moments {
   double sum = 0, sum2 = 0, lo = std::numeric_limits<double>::infinity(), hi = 0;
@@ -39,46 +36,18 @@ std::string trim(const std::string& s) {
 
 }  // namespace
 
-IntegratorSettings convergence_base_settings(const SceneDesc& scene, uint32_t features) {
-  IntegratorSettings s;
-  s.kind = RendererKind::PathTracing;
-  s.max_depth = std::max(0, scene.max_recursion_depth.value_or(kDefaultStudyDepth));
-  s.course_roulette = CourseRoulette::Off;
-  s.split_delta = false;
-  s.nee_at_last_vertex = false;
+PathSettings convergence_base_settings(const SceneDesc& scene) {
+  PathSettings s = kiln_path_defaults(scene);
+  s.max_depth = std::max(0, s.max_depth);
+  s.russian_roulette = false;
   s.rr_min_depth = kStrategyRrMinDepth;
-  s.clamp = 0.0f;
-  s.features = features;
   return s;
 }
 
-NamedStrategy make_strategy(const std::string& name, const IntegratorSettings& base, const std::string& option) {
-  std::string core = name;
-  bool rr = false;
-  const size_t n = sizeof(kRrSuffix) - 1;
-  if (core.size() > n && core.compare(core.size() - n, n, kRrSuffix) == 0) {
-    rr = true;
-    core.resize(core.size() - n);
-  }
-  IntegratorSettings s = base;
-  s.russian_roulette = rr;
-  s.nee = s.mis = false;
-  if (core == "uniform") {
-    s.directions = DirectionSampling::Uniform;
-  } else if (core == "cosine") {
-    s.directions = DirectionSampling::Cosine;
-  } else if (core == "brdf") {
-    s.directions = DirectionSampling::Brdf;
-  } else if (core == "nee") {
-    s.directions = DirectionSampling::Brdf;
-    s.nee = true;
-  } else if (core == "mis") {
-    s.directions = DirectionSampling::Brdf;
-    s.nee = s.mis = true;
-  } else {
-    throw Error(option, "", "unknown strategy '" + name +
-                                "' (uniform, cosine, brdf, nee, mis; append +rr for Russian roulette, e.g. nee+rr)");
-  }
+NamedStrategy make_strategy(const std::string& name, const PathSettings& base, uint32_t features,
+                            const std::string& option) {
+  IntegratorSettings s = kiln_strategy(name, base, option);
+  s.features = features;
   return {name, s};
 }
 

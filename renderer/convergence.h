@@ -17,6 +17,7 @@
 #include "core/image.h"
 #include "renderer/camera.h"
 #include "renderer/integrator.h"
+#include "renderer/rules.h"
 #include "renderer/plot_svg.h"
 
 namespace kiln {
@@ -31,11 +32,12 @@ struct NamedStrategy {
   IntegratorSettings settings;
 };
 
-// The transport rules every strategy shares: path tracing to the scene's MaxRecursionDepth (Kiln's default when
-// absent), no course-specific rules (NEE at the last vertex, roulette replacing the depth cap), no clamping.
-IntegratorSettings convergence_base_settings(const SceneDesc& scene, uint32_t features);
-// Throws kiln::Error naming `option` for an unknown name.
-NamedStrategy make_strategy(const std::string& name, const IntegratorSettings& base,
+// The transport every strategy shares: Kiln's path tracer to the scene's depth (renderer/rules.h), roulette only
+// where a strategy's "+rr" asks for it, no clamping.
+PathSettings convergence_base_settings(const SceneDesc& scene);
+// Kiln's strategy `name` (renderer/rules.h kiln_strategy) on top of base; throws kiln::Error naming `option` for an
+// unknown name.
+NamedStrategy make_strategy(const std::string& name, const PathSettings& base, uint32_t features,
                             const std::string& option = "--strategies");
 // "uniform,cosine,nee" -> names (whitespace trimmed, empties dropped).
 std::vector<std::string> split_list(const std::string& list);

@@ -1,54 +1,57 @@
 #include "renderer/integrator.h"
 
 namespace kiln {
+namespace {
 
-// Kiln's own path-tracing default: MIS with roulette after a minimum depth.
-inline constexpr int kDefaultMaxDepth = 8;
-// The course ray tracer's recursion depth when a scene does not give MaxRecursionDepth.
-inline constexpr int kDefaultCourseRecursion = 5;
-// The course framework's ShadowRayEpsilon when a scene does not give one (its parser's default).
-inline constexpr float kDefaultCourseShadowRayEpsilon = 1e-3f;
-
-IntegratorSettings settings_for_camera(const CameraDesc& camera, const SceneDesc& scene) {
-  IntegratorSettings s;
-  s.kind = camera.renderer;
-  if (camera.renderer == RendererKind::RayTracing) {
-    s.max_depth = scene.max_recursion_depth.value_or(kDefaultCourseRecursion);
-    if (scene.format == "ceng795-xml")
-      s.course_ray_epsilon = scene.shadow_ray_epsilon.value_or(kDefaultCourseShadowRayEpsilon);
-    return s;
+const char* name_of(DirectionSampling d) {
+  switch (d) {
+    case DirectionSampling::Uniform: return "uniform";
+    case DirectionSampling::Cosine: return "cosine";
+    case DirectionSampling::Brdf: return "brdf";
   }
-  if (camera.renderer_explicit && (scene.format == "ceng795-xml" || scene.format == "cs171-json")) {
-    // The course's path-tracing rules (README, "Course path-tracing semantics").
-    s.directions = camera.pt.importance_sampling ? DirectionSampling::Brdf : DirectionSampling::Uniform;
-    s.nee = camera.pt.next_event_estimation;
-    s.mis = false;
-    s.russian_roulette = camera.pt.russian_roulette;
-    s.course_roulette = camera.pt.russian_roulette ? CourseRoulette::Literal : CourseRoulette::Off;
-    s.nee_at_last_vertex = true;
-    s.split_delta = true;
-    s.max_depth = camera.pt.russian_roulette ? -1 : scene.max_recursion_depth.value_or(kDefaultMaxDepth);
-    return s;
-  }
-  // Kiln default: MIS, roulette after a minimum depth, explicit depth cap.
-  s.directions = DirectionSampling::Brdf;
-  s.nee = s.mis = s.russian_roulette = true;
-  s.max_depth = scene.max_recursion_depth.value_or(kDefaultMaxDepth);
-  return s;
+  return "?";
 }
 
+std::string depth_of(int max_depth) { return max_depth < 0 ? "unlimited" : std::to_string(max_depth); }
+
+std::string describe_method(const PathSettings& s) {
+  return std::string("Kiln path tracer: ") + name_of(s.directions) + (s.nee ? (s.mis ? "+nee+mis" : "+nee") : "") +
+         (s.russian_roulette ? "+rr" : "") + ", max depth " + depth_of(s.max_depth);
+}
+
+std::string describe_method(const CoursePathSettings& s) {
+  const char* roulette = s.roulette == CourseRoulette::Literal    ? "+course-rr(literal)"
+                         : s.roulette == CourseRoulette::Expected ? "+course-rr(expected)"
+                                                                  : "";
+  return std::string("course path tracer: ") + (s.importance_sampling ? "brdf" : "uniform") + (s.nee ? "+nee" : "") +
+         roulette + "+fresnel-split, max depth " + depth_of(s.max_depth);
+}
+
+std::string describe_method(const CourseRaySettings& s) {
+  return "course ray tracer, depth " + std::to_string(s.max_depth);
+}
+
+}  // namespace
+
 std::string IntegratorSettings::describe() const {
-  if (kind == RendererKind::RayTracing) return "direct lighting (course ray tracer), depth " + std::to_string(max_depth);
-  std::string d = directions == DirectionSampling::Uniform ? "uniform"
-                  : directions == DirectionSampling::Cosine ? "cosine"
-                                                            : "brdf";
-  std::string s = "path tracing: " + d + (nee ? (mis ? "+nee+mis" : "+nee") : "") +
-                  (russian_roulette ? "+rr" : "") + (split_delta ? "+fresnel-split" : "") +
-                  (course_roulette == CourseRoulette::Expected  ? "+course-rr-weights"
-                   : course_roulette == CourseRoulette::Literal ? "+course-rr(literal)"
-                                                                : "");
-  s += ", max depth " + (max_depth < 0 ? std::string("unlimited") : std::to_string(max_depth));
-  return s;
+  std::string d = std::visit([](const auto& m) { return describe_method(m); }, method);
+  if (clamp > 0.0f) d += ", clamp " + std::to_string(clamp);
+  return d;
+}
+
+Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c) {
+  Rgb L;
+  if (const auto* p = std::get_if<PathSettings>(&s.method))
+    L = trace_path(world, *p, s.features, ray, sampler, c);
+  else if (const auto* cp = std::get_if<CoursePathSettings>(&s.method))
+    L = trace_course_path(world, *cp, s.features, ray, sampler, c);
+  else
+    L = trace_course_rays(world, std::get<CourseRaySettings>(s.method), ray, sampler, c);
+  if (s.clamp > 0.0f) {
+    const float mx = L.max_component();
+    if (mx > s.clamp) L *= s.clamp / mx;
+  }
+  return L;
 }
 
 }  // namespace kiln

@@ -1,8 +1,11 @@
-// Integrators: the course's direct-lighting (Whitted-style) ray tracer and the path tracer. Both are pure
-// functions of (world, camera ray, per-sample RNG), so output is independent of threads and tile order.
+// The integrators and their settings. Kiln's own path tracer is what every scene gets under Kiln's rules; the
+// course path tracer and the course ray tracer reproduce the CENG795 reference renderer. Which one renders a camera,
+// and with which settings, is decided in one place: renderer/rules.h. Every integrator is a pure function of
+// (world, camera ray, per-sample sampler), so output is independent of threads and tile order.
 #pragma once
 #include <cstdint>
 #include <string>
+#include <variant>
 
 #include "core/sampler.h"
 #include "renderer/world.h"
@@ -11,27 +14,46 @@ namespace kiln {
 
 enum class DirectionSampling { Uniform, Cosine, Brdf };
 
-// How a CENG795 scene's RussianRoulette is rendered (README, "Course path-tracing semantics"). The course's
-// roulette over-weights the direct light of vertex k by 2 - p_k (p_k: the survival probability it derives from
-// the path's BRDF values). Expected renders that expectation with Kiln's unbiased throughput roulette, i.e. the
-// same image with finite variance; Literal replays the course's own roulette (same expectation, its fireflies:
-// survivors carry weights that grow like (pi/kd)^(k(k+1)/2), so its variance is unbounded).
-enum class CourseRoulette { Off, Expected, Literal };
-
-struct IntegratorSettings {
-  RendererKind kind = RendererKind::PathTracing;
+// Kiln's path tracer (renderer/path_tracer.cpp): direction sampling, next event estimation, MIS with the power
+// heuristic, unbiased throughput roulette and a depth cap.
+struct PathSettings {
   DirectionSampling directions = DirectionSampling::Brdf;
   bool nee = true;
-  bool mis = true;                // combine NEE and BRDF sampling with the power heuristic (needs nee)
+  bool mis = true;              // weight NEE and direction sampling with the power heuristic (needs nee)
   bool russian_roulette = true;
-  CourseRoulette course_roulette = CourseRoulette::Off;  // course semantics: roulette replaces the depth cap
-  bool split_delta = false;       // course rule: follow every Fresnel branch of mirror / glass (spec §11)
-  int max_depth = 8;              // bounces after the camera ray; < 0: unlimited (only with roulette)
-  int rr_min_depth = 3;           // Kiln's roulette starts after this many bounces
-  bool nee_at_last_vertex = false;  // course rule: the vertex at max_depth still samples lights (README)
-  float course_ray_epsilon = 0.0f;  // course ray tracer: ShadowRayEpsilon offset along the normal; 0 = ulp offset
-  float clamp = 0.0f;             // firefly clamp on per-sample radiance; 0 = off (default)
-  uint32_t features = kFeatureAll;  // the scene's feature mask; code paths for absent features are skipped
+  int max_depth = 8;            // bounces after the camera ray; < 0: unlimited (only with roulette)
+  int rr_min_depth = 3;         // roulette starts after this many bounces
+};
+
+// How the course's RussianRoulette is rendered (README, "Course conventions"). Literal replays its coin flips (its
+// survivors' weights grow like (pi/kd)^(k(k+1)/2): unbounded variance); Expected applies their expectation, the
+// 2 - p weight of the direct light at each vertex, and ends paths with Kiln's unbiased roulette (finite variance).
+enum class CourseRoulette { Off, Expected, Literal };
+
+// The CENG795 course's path tracer (renderer/course_path_tracer.cpp): its RendererParams and its rules.
+struct CoursePathSettings {
+  bool importance_sampling = false;  // BRDF sampling; otherwise uniform hemisphere directions
+  bool nee = false;
+  CourseRoulette roulette = CourseRoulette::Off;
+  int max_depth = 8;  // MaxRecursionDepth: the vertex at this depth still samples lights; < 0: unlimited (roulette)
+};
+
+// The CENG795 course's direct-lighting (Whitted-style) ray tracer (renderer/course_ray_tracer.cpp).
+struct CourseRaySettings {
+  int max_depth = 5;          // recursion depth of mirror / dielectric / conductor rays
+  float ray_epsilon = 1e-3f;  // ShadowRayEpsilon: secondary rays start this far along the normal
+};
+
+struct IntegratorSettings {
+  std::variant<PathSettings, CoursePathSettings, CourseRaySettings> method;
+  uint32_t features = kFeatureAll;  // the scene's feature mask: code paths for absent features are skipped
+  float clamp = 0.0f;               // firefly clamp on each sample's radiance; 0 = off
+  bool centre_single_sample = false;  // a 1-spp render samples pixel centres (the course's convention)
+
+  IntegratorSettings() = default;
+  IntegratorSettings(PathSettings s) : method(s) {}  // NOLINT: every integrator's settings are settings
+  IntegratorSettings(CoursePathSettings s) : method(s) {}  // NOLINT
+  IntegratorSettings(CourseRaySettings s) : method(s) {}  // NOLINT
   std::string describe() const;
 };
 
@@ -54,21 +76,21 @@ struct RayCounters {
   uint64_t query_cycles() const { return primary_cycles + shadow_cycles + indirect_cycles; }
 };
 
-// Settings for a camera: the scene's Renderer/RendererParams, MaxRecursionDepth and Kiln's defaults.
-IntegratorSettings settings_for_camera(const CameraDesc& camera, const SceneDesc& scene);
-
-// Sampler dimensions (core/sampler.h): the pixel position and lens come first, then each path vertex takes the
-// same kDimensionsPerVertex requests, so that a given request is stratified across the samples of a pixel.
+// Sampler dimensions (core/sampler.h): the pixel position and lens come first, then the integrator's requests
+// (renderer/path_vertex.h lays out the path tracers' per-vertex requests).
 inline constexpr uint32_t kPixelDimension = 0;
 inline constexpr uint32_t kLensDimension = 1;
 inline constexpr uint32_t kFirstPathDimension = 2;
 
 // Radiance along a camera ray (the sampler is positioned at kFirstPathDimension).
-Rgb trace_direct(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c);
-Rgb trace_path(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c);
+Rgb trace_path(const World& world, const PathSettings& s, uint32_t features, const Ray& ray, Sampler& sampler,
+               RayCounters& c);
+Rgb trace_course_path(const World& world, const CoursePathSettings& s, uint32_t features, const Ray& ray,
+                      Sampler& sampler, RayCounters& c);
+Rgb trace_course_rays(const World& world, const CourseRaySettings& s, const Ray& ray, Sampler& sampler,
+                      RayCounters& c);
 
-inline Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c) {
-  return s.kind == RendererKind::PathTracing ? trace_path(world, s, ray, sampler, c) : trace_direct(world, s, ray, sampler, c);
-}
+// The integrator the settings name.
+Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c);
 
 }  // namespace kiln

@@ -25,18 +25,22 @@ int main(int argc, char** argv) {
   render->add_flag("-q,--quiet", ra.quiet, "No progress bar or summary on stderr");
   render->add_option("--accel", accel, "Ray-query backend: embree or bvh (the in-house SAH BVH)")
       ->check(CLI::IsMember({"embree", "bvh"}))->capture_default_str();
-  render->add_option("--strategy", ra.strategy,
-                     "Override the scene's integrator: uniform, cosine, brdf (no NEE), nee, mis (NEE + BRDF, power "
-                     "heuristic) or direct (course ray tracer)");
-  render->add_option("--rr", ra.rr, "Russian roulette on/off (true/false)");
-  render->add_option("--course-roulette", ra.course_roulette,
+  render->add_option("--rules", ra.rules.rules,
+                     "Whose rules render the scene: kiln (MIS, unbiased roulette, exact pdfs) or course (the course "
+                     "reference renderer's conventions; CENG795 and CS171 scenes). Default: the scene's own")
+      ->check(CLI::IsMember({"kiln", "course"}));
+  render->add_option("--strategy", ra.rules.strategy,
+                     "Render with Kiln's path tracer and this strategy: uniform, cosine, brdf (no NEE), nee, mis (NEE + "
+                     "BRDF, power heuristic); +rr turns roulette on (e.g. nee+rr)");
+  render->add_option("--rr", ra.rules.russian_roulette, "Russian roulette on/off (true/false)");
+  render->add_option("--course-roulette", ra.rules.course_roulette,
                      "How CENG795 RussianRoulette cameras are rendered: literal (default: the course's own coin flips, "
                      "so a render at the scene's spp looks like the course's; unbounded variance) or expected (the "
                      "same expected image with finite variance: the course's weights, ended by Kiln's unbiased "
                      "roulette)")
       ->check(CLI::IsMember({"expected", "literal"}));
-  render->add_option("--max-depth", ra.max_depth, "Maximum bounces after the camera ray (-1: unlimited, needs --rr)");
-  render->add_option("--clamp", ra.clamp, "Clamp per-sample radiance to this maximum (biased; 0 = off)")->capture_default_str();
+  render->add_option("--max-depth", ra.rules.max_depth, "Maximum bounces after the camera ray (-1: unlimited, needs --rr)");
+  render->add_option("--clamp", ra.rules.clamp, "Clamp per-sample radiance to this maximum (biased; 0 = off)")->capture_default_str();
   render->add_option("--subdivide", ra.subdivide, "Loop-subdivide every mesh this many times");
   render->add_option("--crop", ra.crop, "Render only pixels x0,x1,y0,y1 (x1, y1 exclusive); written as an EXR data window");
   render->add_option("--spp-range", ra.spp_range,
@@ -48,8 +52,8 @@ int main(int argc, char** argv) {
   render->add_option("--reference", ra.reference,
                      "Reference EXR: after every doubling of spp write spp,seconds,mse,relmse,rmse to "
                      "<image>.convergence.csv; final figures go into the EXR metadata and --stats");
-  render->add_flag("--physical-lights", ra.physical_lights,
-                   "Use exact estimators where the course references follow other conventions (README)");
+  render->add_flag("--physical-lights", ra.rules.physical_lights,
+                   "Under the course's rules, sample ellipsoid lights with their exact density (README)");
   render->add_flag("--all-features", ra.all_features, "Render with every feature code path enabled (to measure the mask's gain)")
       ->group("");
   render->add_flag("--reverse-tiles", ra.reverse_tiles, "Schedule tiles in reverse order (determinism checks)")->group("");
@@ -59,6 +63,9 @@ int main(int argc, char** argv) {
   auto* info = app.add_subcommand("info", "List what a scene contains and which renderer parts it needs");
   info->add_option("scene", info_scene, "Scene file")->required();
   info->add_option("--subdivide", info_subdivide, "Loop-subdivide every mesh this many times");
+  std::optional<std::string> info_rules;
+  info->add_option("--rules", info_rules, "Show the integrators under these rules: kiln or course")
+      ->check(CLI::IsMember({"kiln", "course"}));
 
   std::string cmp_image, cmp_ref;
   int cmp_block = 32;
@@ -102,6 +109,8 @@ int main(int argc, char** argv) {
   profile->add_option("--seed", pa.seed, "Random seed")->capture_default_str();
   profile->add_flag("--no-render", pa.no_render, "Stop after building the accelerator");
   profile->add_flag("--json", pa.json, "Print the measurements as JSON instead of a table");
+  profile->add_option("--rules", pa.rules, "Whose rules render the profiled camera: kiln or course (default: the scene's)")
+      ->check(CLI::IsMember({"kiln", "course"}));
 
   std::string cb_scene;
   size_t cb_rays = 100000;
@@ -126,7 +135,7 @@ int main(int argc, char** argv) {
   }
   ra.accel = accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*render) return run_guarded([&] { return cmd_render(ra); });
-  if (*info) return run_guarded([&] { return cmd_info(info_scene, info_subdivide); });
+  if (*info) return run_guarded([&] { return cmd_info(info_scene, info_subdivide, info_rules); });
   ca.accel = ca_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*converge) return run_guarded([&] { return cmd_converge(ca); });
   pa.accel = profile_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;

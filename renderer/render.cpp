@@ -14,11 +14,11 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
-// Pixel sample position: the centre for 1 spp (the course's convention), otherwise the sampler's first
-// dimension, stratified over the pixel's samples.
-Vec2f pixel_offset(uint32_t spp_total, Sampler& sampler) {
+// Pixel sample position: the sampler's first dimension, stratified over the pixel's samples; the centre when the
+// rules sample a single-sample render there.
+Vec2f pixel_offset(const IntegratorSettings& settings, uint32_t spp_total, Sampler& sampler) {
   sampler.set_dimension(kPixelDimension);
-  return spp_total <= 1 ? Vec2f{0.5f, 0.5f} : sampler.next_2d();
+  return settings.centre_single_sample && spp_total <= 1 ? Vec2f{0.5f, 0.5f} : sampler.next_2d();
 }
 
 class Progress {
@@ -87,7 +87,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
           PixelSum& px = film.at(x, y);
           for (uint32_t s = first; s < last; ++s) {
             Sampler sampler(options.seed, uint32_t(x), uint32_t(y), s);
-            const Vec2f off = pixel_offset(options.spp_total, sampler);
+            const Vec2f off = pixel_offset(settings, options.spp_total, sampler);
             sampler.set_dimension(kLensDimension);
             const Vec2f lens = sampler.next_2d();
             const Ray ray = camera.generate_ray(float(x) + off.x, float(y) + off.y, lens);

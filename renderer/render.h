@@ -16,7 +16,7 @@ struct Crop {
 
 struct RenderOptions {
   uint64_t seed = 0;
-  uint32_t spp_total = 1;    // the frame's nominal sample count (1: pixel centres, the course's convention)
+  uint32_t spp_total = 1;    // the frame's nominal sample count (1 spp: pixel centres under the course's rules)
   int tile_size = 16;
   std::optional<Crop> crop;  // only these pixels are rendered (others stay empty)
   bool reverse_tile_order = false;     // for tests: the result must not depend on it

@@ -30,4 +30,11 @@ inline bool valid_reflection_side(const SurfaceInteraction& si, Vec3f wo, Vec3f 
   return dot(wo, si.ng) * dot(wi, si.ng) > 0.0f;
 }
 
+// The shading frame and the geometry must agree on whether wi reflects or transmits: where a smooth shading normal
+// bends away from the geometric one, a direction can be above one surface and below the other, and following it
+// would leak light through the surface (or shadow it from its own side).
+inline bool consistent_sides(const SurfaceInteraction& si, Vec3f wo, Vec3f wi, Vec3f wo_l, Vec3f wi_l) {
+  return (wo_l.z * wi_l.z > 0.0f) == (dot(wo, si.ng) * dot(wi, si.ng) > 0.0f);
+}
+
 }  // namespace kiln

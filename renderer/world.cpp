@@ -91,6 +91,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   for (const MaterialDesc& m : scene.materials) {
     w.materials.push_back(build_material(m, scene));
     const Material& built = w.materials.back();
+    ++w.stats.compiled_materials[built.describe()];
     if (std::holds_alternative<Phong>(built.surface) || std::holds_alternative<BlinnPhong>(built.surface) ||
         std::holds_alternative<TorranceSparrow>(built.surface))
       w.features |= kFeatureGlossy;
@@ -100,7 +101,6 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   w.stats.materials = w.materials.size();
   if (!w.ambient.is_black()) w.features |= kFeatureAmbient;
 
-  const bool course = options.course_conventions.value_or(scene.format == "ceng795-xml");
   WorldGeometry& g = w.geometry;
   // Meshes: world-space copies for the scene, object-space prototypes for instanced bases.
   std::vector<int> prototype_of(scene.meshes.size(), -1);
@@ -157,9 +157,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       w.warnings.push_back(s.name + ": zero-radius light sphere emits nothing; left out of the lights");
     } else if (emits) {
       sd.light = int(w.lights.size());
-      SphereLight light(s.center, s.radius, s.to_world, *s.emission);
-      light.set_course_object_space_pdf(course);
-      w.lights.emplace_back(light);
+      w.lights.emplace_back(SphereLight(s.center, s.radius, s.to_world, *s.emission, options.ellipsoid_pdf));
       ++w.stats.sphere_lights;
       w.features |= kFeatureSphereLights;
       w.stats.cone_sampler_built = true;

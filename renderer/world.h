@@ -2,6 +2,7 @@
 // data shading needs. Only what the scene uses is built (no sphere data without spheres, no light selector without
 // lights) and WorldStats records what was.
 #pragma once
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,7 +12,7 @@
 #include "materials/material.h"
 #include "renderer/accel/accelerator.h"
 #include "renderer/features.h"
-#include "renderer/world_geometry.h"
+#include "renderer/accel/geometry.h"
 #include "scenes/scene.h"
 
 namespace kiln {
@@ -28,6 +29,7 @@ struct WorldStats {
   size_t point_lights = 0, spot_lights = 0, directional_lights = 0, area_lights = 0, mesh_lights = 0,
          sphere_lights = 0;
   size_t materials = 0;
+  std::map<std::string, size_t> compiled_materials;  // Material::describe() -> how many materials compiled to it
   bool sphere_geometry_built = false;
   bool cone_sampler_built = false;  // sphere/ellipsoid lights present
   bool light_selector_built = false;
@@ -54,10 +56,8 @@ struct World {
 struct WorldOptions {
   AccelKind accel = AccelKind::Embree;
   LightSelection light_selection = LightSelection::PowerProportional;
-  bool build_accelerator = true;
-  // CENG795 reference conventions that differ from the exact estimators (README, "Course conventions"): ellipsoid
-  // lights divided by the object-space cone pdf. Empty: on for CENG795 XML scenes only.
-  std::optional<bool> course_conventions;  // kiln info only needs the description and the feature mask
+  bool build_accelerator = true;  // kiln info only needs the description and the feature mask
+  EllipsoidPdf ellipsoid_pdf = EllipsoidPdf::Exact;  // the rule set's (renderer/rules.h)
 };
 
 // Throws kiln::Error on inconsistent descriptions (dangling material indices etc.).

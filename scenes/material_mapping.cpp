@@ -48,6 +48,7 @@ SurfaceBrdf build_surface(const MaterialDesc& m, const SceneDesc& scene, const C
     if (!std::isfinite(m.phong_exponent) || m.phong_exponent < 0.0f)
       ctx.fail("PhongExponent must be a non-negative number, got " + std::to_string(m.phong_exponent));
     if (kd.is_black() && ks.is_black()) return NoSurface{};
+    if (ks.is_black()) return Lambert{kd * kPi};  // f = kd without the specular lobe
     return BlinnPhong{kd, ks, m.phong_exponent, PhongVariant::Original};
   }
   if (*m.brdf < 0 || size_t(*m.brdf) >= scene.brdfs.size())
@@ -58,6 +59,12 @@ SurfaceBrdf build_surface(const MaterialDesc& m, const SceneDesc& scene, const C
     ctx.fail("BRDF id=" + std::to_string(b.id) + " Exponent must be a non-negative number, got " +
              std::to_string(b.exponent));
   if (kd.is_black() && ks.is_black()) return NoSurface{};
+  // A lobe whose reflectance is zero is left out: without ks, the Phong forms are f = kd (Original, Modified) or
+  // kd/pi (normalized), and Torrance-Sparrow without kdfresnel is kd/pi, all a Lambertian of albedo pi * f.
+  if (ks.is_black()) {
+    const bool normalized = b.kind == BrdfKind::TorranceSparrow || b.kind == BrdfKind::Lambert || b.normalized;
+    if (b.kind != BrdfKind::TorranceSparrow || !b.kd_fresnel) return Lambert{normalized ? kd : kd * kPi};
+  }
   switch (b.kind) {
     case BrdfKind::OriginalPhong:
     case BrdfKind::ModifiedPhong:

@@ -10,7 +10,9 @@
 //     The BRDF's Exponent is used; PhongExponent is ignored (spec §14.11).
 //   * No BRDF: the classic course shading k_d max(0, cos) + k_s cos^PhongExponent(alpha_h), i.e.
 //     BlinnPhong Original (f = kd + ks cos^p(alpha_h) / cos(theta_i)).
-//   * A surface whose kd and ks are both black is dropped (NoSurface).
+//   * A surface whose kd and ks are both black is dropped (NoSurface). Without ks the specular lobe is dropped: a
+//     Phong / Blinn-Phong form or Torrance-Sparrow (without kdfresnel) becomes Lambert(pi * f) with f its constant
+//     diffuse value (kd for the Original and Modified forms, kd/pi for the normalized ones and Torrance-Sparrow).
 // Delta part:
 //   * type Mirror -> Mirror(k_m); Conductor -> Conductor(k_m, RefractionIndex, AbsorptionIndex);
 //     Dielectric -> Dielectric(RefractionIndex), absorption = AbsorptionCoefficient (2021).

@@ -98,7 +98,7 @@ class XmlLoader {
 
     scene_.source_path = file_;
     scene_.format = "ceng795-xml";
-    scene_.rules = SceneRules::Ceng795Course;
+    scene_.rules = read_rules(root_);
     warn_unknown_children(root_, kSceneChildren);
     // Fixed processing order: the files do not order their top-level elements consistently.
     read_globals();
@@ -578,6 +578,15 @@ class XmlLoader {
         tm.gamma = positive(n, parse_float(v, source(n)), "Gamma");
     }
     return tm;
+  }
+
+  // Kiln's extension <Scene rules="kiln">: a scene written for Kiln in this format renders with Kiln's rules; any
+  // other CENG795 file is a course scene (README, "Two rule sets").
+  SceneRules read_rules(Node scene) const {
+    const auto v = attr(scene, "rules");
+    if (!v || *v == "course") return SceneRules::Ceng795Course;
+    if (*v == "kiln") return SceneRules::Kiln;
+    fail(scene, "unknown rules '" + *v + "' (kiln, course)");
   }
 
   RendererKind read_renderer(Node r) const {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/ray.h"
-#include "renderer/world_geometry.h"
+#include "renderer/accel/geometry.h"
 
 namespace kiln {
 

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <limits>
 
-#include "renderer/accel/hit_point.h"
+#include "renderer/accel/surface_point.h"
 #include "renderer/accel/object_ray.h"
 #include "renderer/accel/shape_bounds.h"
 #include "renderer/accel/sphere_intersect.h"

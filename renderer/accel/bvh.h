@@ -15,7 +15,7 @@
 // slab test. Leaves hold one kind of primitive only (triangles, or spheres/instances).
 //
 // Ray conventions are Embree's: hits with t in [ray.tmin, ray.tmax] (no epsilon), triangles tested with the
-// watertight test of triangle_intersect.h, spheres with sphere_intersect.h, Hit::ng from hit_point.h; rays that
+// watertight test of triangle_intersect.h, spheres with sphere_intersect.h, Hit::ng from surface_point.h; rays that
 // Embree would reject (traceable_ray.h) miss.
 #pragma once
 #include <memory>

@@ -10,7 +10,7 @@
 #include "renderer/accel/bvh.h"
 #include "renderer/accel/embree_accel.h"
 #include "renderer/accel/exact_hit.h"
-#include "renderer/accel/hit_point.h"
+#include "renderer/accel/surface_point.h"
 #include "renderer/accel/shape_bounds.h"
 
 namespace kiln {
@@ -191,7 +191,7 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
     const float len = length(ea.ng);
     if (!(len > 0.0f) || !std::isfinite(len)) return;  // degenerate triangle: no direction to leave in
     const Vec3f ng = ea.ng / len;
-    const Vec3f p = hit_point(geometry, cam, ea);
+    const Vec3f p = surface_point(geometry, cam, ea).p;
 
     const Frame frame(face_forward(ng, -cam.d));
     const Ray bounce = spawn_ray(p, ng, frame.to_world(sample_cosine_hemisphere(rng.next_2d())));

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "renderer/accel/hit_point.h"
+#include "renderer/accel/surface_point.h"
 #include "renderer/accel/object_ray.h"
 #include "renderer/accel/shape_bounds.h"
 #include "renderer/accel/sphere_intersect.h"

@@ -51,4 +51,8 @@ size_t geometry_triangle_count(const WorldGeometry& g) {
   return n;
 }
 
+Bounds3f WorldGeometry::bounds() const { return geometry_bounds(*this); }
+
+size_t WorldGeometry::triangle_count() const { return geometry_triangle_count(*this); }
+
 }  // namespace kiln

@@ -1,10 +1,9 @@
-// World-space bounds of the shapes accelerators are built over. Lives in kiln_accel so the accelerators (and
-// their tests, which link kiln_accel only) need nothing from the rest of the renderer; WorldGeometry::bounds and
+// World-space bounds of the shapes accelerators are built over; WorldGeometry::bounds and
 // WorldGeometry::triangle_count delegate here.
 #pragma once
 #include <cstddef>
 
-#include "renderer/world_geometry.h"
+#include "renderer/accel/geometry.h"
 
 namespace kiln {
 

@@ -17,7 +17,7 @@
 #include "core/sampling.h"
 #include "renderer/accel/bvh.h"
 #include "renderer/accel/embree_accel.h"
-#include "renderer/accel/hit_point.h"
+#include "renderer/accel/surface_point.h"
 #include "renderer/accel/shape_bounds.h"
 #include "renderer/bench/trace_loop.h"
 #include "scenes/ply_loader.h"
@@ -85,7 +85,7 @@ struct Fixture {
         primary.push_back(r);
         Hit h;
         if (!embree->intersect(r, h)) continue;
-        const Vec3f p = hit_point(g, r, h);
+        const Vec3f p = surface_point(g, r, h).p;
         const Vec3f ng = normalize(h.ng);
         const Frame f(face_forward(ng, -r.d));
         bounce.push_back(spawn_ray(p, ng, f.to_world(sample_cosine_hemisphere(rng.next_2d()))));

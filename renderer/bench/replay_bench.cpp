@@ -18,6 +18,7 @@
 #include "renderer/camera.h"
 #include "renderer/film.h"
 #include "renderer/render.h"
+#include "renderer/rules.h"
 #include "renderer/world.h"
 #include "renderer/bench/trace_loop.h"
 #include "scenes/loader.h"
@@ -56,8 +57,7 @@ struct Replay {
     world = build_world(scene, {});
     const CameraDesc& cd = scene.cameras.front();
     const Camera camera(cd);
-    IntegratorSettings settings = settings_for_camera(cd, scene);
-    settings.features = world->features;
+    const IntegratorSettings settings = camera_settings(cd, scene, scene.rules, {}, world->features);
 
     std::unique_ptr<Accelerator> real = std::move(world->accel);
     world->accel = std::make_unique<RecordingAccel>(*real);

@@ -8,6 +8,7 @@
 
 #include "renderer/accel/accelerator.h"
 #include "renderer/render.h"
+#include "renderer/rules.h"
 
 namespace kiln {
 
@@ -21,12 +22,7 @@ struct RenderArgs {
   std::optional<std::string> stats_path;
   bool quiet = false;
   AccelKind accel = AccelKind::Embree;
-  // Integrator overrides.
-  std::optional<std::string> strategy;  // uniform | cosine | brdf | nee | mis
-  std::optional<bool> rr;
-  std::optional<std::string> course_roulette;  // expected | literal (CENG795 RussianRoulette cameras only)
-  std::optional<int> max_depth;
-  float clamp = 0.0f;
+  RuleOverrides rules;  // --rules, --strategy, --rr, --max-depth, --course-roulette, --physical-lights, --clamp
   bool all_features = false;
   int subdivide = -1;
   bool reverse_tiles = false;
@@ -35,11 +31,10 @@ struct RenderArgs {
   std::optional<std::string> aovs;       // "albedo,normal,depth,position,variance"
   std::optional<double> time_limit;      // seconds
   std::optional<std::string> reference;  // EXR to report error against after every doubling of spp
-  bool physical_lights = false;          // exact estimators even where the course references use other ones
 };
 
 int cmd_render(const RenderArgs& args);
-int cmd_info(const std::string& scene_path, int subdivide);
+int cmd_info(const std::string& scene_path, int subdivide, const std::optional<std::string>& rules);
 // Prints block-luminance statistics and MSE / relMSE of image against reference (both EXR) as JSON.
 int cmd_compare(const std::string& image, const std::string& reference, int block);
 

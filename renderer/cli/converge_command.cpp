@@ -82,9 +82,9 @@ int cmd_converge(const ConvergeArgs& args) {
   // Validate every name before spending time on a reference.
   const std::vector<std::string> names = split_list(args.strategies);
   if (names.empty()) throw Error("--strategies", "", "no strategy given");
-  const IntegratorSettings probe = convergence_base_settings(scene, kFeatureAll);
+  const PathSettings base = convergence_base_settings(scene);
   bool all_nee = true;
-  for (const std::string& n : names) all_nee &= make_strategy(n, probe).settings.nee;
+  for (const std::string& n : names) all_nee &= kiln_strategy(n, base, "--strategies").nee;
 
   bool removed_delta = false;
   if (!all_nee && !args.keep_delta_lights && delta_light_count(scene) > 0) {
@@ -101,13 +101,13 @@ int cmd_converge(const ConvergeArgs& args) {
     removed_delta = true;
   }
 
+  // Every strategy is one of Kiln's, so the world samples lights with Kiln's exact densities.
   WorldOptions wo;
   wo.accel = args.accel;
   const auto world = build_world(scene, wo);
   const Camera camera(cd);
-  const IntegratorSettings base = convergence_base_settings(scene, world->features);
   std::vector<NamedStrategy> strategies;
-  for (const std::string& n : names) strategies.push_back(make_strategy(n, base));
+  for (const std::string& n : names) strategies.push_back(make_strategy(n, base, world->features));
 
   const SignalGuard signals;
   std::filesystem::create_directories(args.out_dir);
@@ -124,7 +124,7 @@ int cmd_converge(const ConvergeArgs& args) {
                       std::to_string(camera.height()) + " (check --resolution-scale)");
     reference_note = "reference " + std::filesystem::path(*args.reference).filename().string();
   } else {
-    const NamedStrategy ref_strategy = make_strategy("mis", base);
+    const NamedStrategy ref_strategy = make_strategy("mis", base, world->features);
     const std::string path = (dir / "reference.exr").string();
     if (!args.quiet)
       std::fprintf(stderr, "kiln: converge: no --reference given; rendering one with mis at %u spp (%dx%d) to %s\n",

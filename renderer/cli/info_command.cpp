@@ -33,17 +33,22 @@ const char* material_type_name(MaterialType t) {
 
 }  // namespace
 
-int cmd_info(const std::string& path, int subdivide) {
+int cmd_info(const std::string& path, int subdivide, const std::optional<std::string>& rules_override) {
   LoadOptions lo;
   lo.subdivide = subdivide;
   const SceneDesc s = load_scene(path, lo);
+  RuleOverrides overrides;
+  overrides.rules = rules_override;
+  const SceneRules rules = resolve_rules(s, overrides);
   WorldOptions wo;
   wo.build_accelerator = false;
+  wo.ellipsoid_pdf = ellipsoid_pdf(rules, overrides);
   const auto world = build_world(s, wo);
   std::printf("scene: %s (%s)\n", path.c_str(), s.format.c_str());
+  std::printf("rules: %s\n", rules_name(rules));
   std::printf("cameras: %zu\n", s.cameras.size());
   for (const CameraDesc& c : s.cameras) {
-    const IntegratorSettings is = settings_for_camera(c, s);
+    const IntegratorSettings is = camera_settings(c, s, rules, overrides, world->features);
     std::printf("  camera %s: %dx%d, %d spp, %s -> %s%s\n", c.id.c_str(), c.width, c.height, c.num_samples,
                 is.describe().c_str(), c.image_name.c_str(), c.tonemap ? " (Photographic tonemap)" : "");
   }
@@ -64,6 +69,8 @@ int cmd_info(const std::string& path, int subdivide) {
   if (brdfs.empty()) std::printf(" none (classic Blinn-Phong)");
   for (const auto& [k, v] : brdfs) std::printf(" %s x%d", k.c_str(), v);
   const WorldStats& ws = world->stats;
+  std::printf("\ncompiled:");
+  for (const auto& [k, v] : ws.compiled_materials) std::printf(" %s x%zu", k.c_str(), v);
   std::printf("\nlights: ambient %s, point %zu, spot %zu, directional %zu, area %zu, mesh %zu, sphere %zu, env %zu\n",
               s.ambient_light.is_black() ? "off" : "on", ws.point_lights, ws.spot_lights, ws.directional_lights,
               ws.area_lights, ws.mesh_lights, ws.sphere_lights, s.env_lights.size());

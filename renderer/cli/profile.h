@@ -6,28 +6,6 @@
 // Memory is the process's peak resident set (VmHWM; reset per phase through /proc/self/clear_refs when the kernel
 // allows, so tools that read this process's peak afterwards see only the last phase; else ru_maxrss) plus the
 // sizes of the big arrays (scene description, world geometry, normals, accelerator). No image is written.
-//
-// CLI11 lines for renderer/main.cpp (the lead's file):
-//
-//   ProfileArgs pa;
-//   std::string profile_accel = "embree";
-//   auto* profile = app.add_subcommand("profile", "Time and measure the phases of a render (parse, subdivision, "
-//                                                 "build, render), rays per second and peak memory");
-//   profile->add_option("scene", pa.scene, "Scene file (.xml, .json) or bare mesh (.ply, .obj)")->required();
-//   profile->add_option("--subdivide", pa.subdivide, "Loop-subdivide every mesh this many times (default: the "
-//                                                   "scene's own setting)");
-//   profile->add_option("--accel", profile_accel, "Ray-query backend: embree or bvh")
-//       ->check(CLI::IsMember({"embree", "bvh"}))->capture_default_str();
-//   profile->add_option("--spp", pa.spp, "Samples per pixel for the timed render")->check(CLI::PositiveNumber)
-//       ->capture_default_str();
-//   profile->add_option("--camera", pa.camera, "Profile the camera with this id (default: the first)");
-//   profile->add_option("--threads", pa.threads, "Worker threads (0: all cores)")->capture_default_str();
-//   profile->add_option("--seed", pa.seed, "Random seed")->capture_default_str();
-//   profile->add_flag("--no-render", pa.no_render, "Stop after building the accelerator");
-//   profile->add_flag("--json", pa.json, "Print the measurements as JSON instead of a table");
-//   ...
-//   pa.accel = profile_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
-//   if (*profile) return run_guarded([&] { return cmd_profile(pa); });
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -48,6 +26,7 @@ struct ProfileArgs {
   uint64_t seed = 0;
   bool no_render = false;
   bool json = false;
+  std::optional<std::string> rules;  // kiln | course; default: the scene's own
 };
 
 struct RayKindStats {

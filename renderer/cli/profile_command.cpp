@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "renderer/cli/profile.h"
 #include "renderer/integrator.h"
+#include "renderer/rules.h"
 #include "renderer/render.h"
 #include "renderer/ray_query.h"
 #include "renderer/world.h"
@@ -154,8 +155,12 @@ ProfileReport run_profile(const ProfileArgs& args) {
   r.subdivision_peak_rss = phase_peak();
 
   t = Clock::now();
+  RuleOverrides overrides;
+  overrides.rules = args.rules;
+  const SceneRules rules = resolve_rules(scene, overrides);
   WorldOptions wo;
   wo.accel = args.accel;
+  wo.ellipsoid_pdf = ellipsoid_pdf(rules, overrides);
   r.scene_desc_bytes = scene_desc_bytes(scene);  // measured before the world takes the arrays over
   const auto world = build_world_taking_meshes(scene, wo);
   const double build_seconds = seconds_since(t);
@@ -181,8 +186,7 @@ ProfileReport run_profile(const ProfileArgs& args) {
       cd = &*it;
     }
     const Camera camera(*cd);
-    IntegratorSettings settings = settings_for_camera(*cd, scene);
-    settings.features = world->features;
+    const IntegratorSettings settings = camera_settings(*cd, scene, rules, overrides, world->features);
     RenderOptions ro;
     ro.seed = args.seed;
     ro.spp_total = std::max(1u, args.spp);

@@ -30,45 +30,6 @@ std::atomic<bool> g_interrupted{false};
 constexpr uint32_t kAovSamplesPerPixel = 4;
 extern "C" void on_signal(int) { g_interrupted.store(true); }
 
-void apply_overrides(IntegratorSettings& s, const RenderArgs& a) {
-  if (a.strategy) {
-    const std::string& st = *a.strategy;
-    s.kind = RendererKind::PathTracing;
-    s.course_roulette = CourseRoulette::Off;
-    s.split_delta = false;
-    if (s.max_depth < 0) s.max_depth = 8;
-    if (st == "uniform" || st == "cosine" || st == "brdf") {
-      s.directions = st == "uniform" ? DirectionSampling::Uniform
-                     : st == "cosine" ? DirectionSampling::Cosine
-                                      : DirectionSampling::Brdf;
-      s.nee = s.mis = false;
-    } else if (st == "nee") {
-      s.directions = DirectionSampling::Brdf;
-      s.nee = true;
-      s.mis = false;
-    } else if (st == "mis") {
-      s.directions = DirectionSampling::Brdf;
-      s.nee = s.mis = true;
-    } else if (st == "direct") {
-      s.kind = RendererKind::RayTracing;
-    } else {
-      throw Error("--strategy", "", "unknown strategy '" + st + "' (uniform, cosine, brdf, nee, mis, direct)");
-    }
-  }
-  if (a.rr) {
-    s.russian_roulette = *a.rr;
-    if (!*a.rr) s.course_roulette = CourseRoulette::Off;
-  }
-  if (a.course_roulette && s.course_roulette != CourseRoulette::Off) {
-    if (*a.course_roulette == "expected") s.course_roulette = CourseRoulette::Expected;
-    else if (*a.course_roulette == "literal") s.course_roulette = CourseRoulette::Literal;
-    else throw Error("--course-roulette", "", "unknown mode '" + *a.course_roulette + "' (expected, literal)");
-  }
-  if (a.max_depth) s.max_depth = *a.max_depth;
-  if (s.max_depth < 0 && !s.russian_roulette) throw Error("--max-depth", "", "unlimited depth needs --rr");
-  s.clamp = a.clamp;
-}
-
 std::string stem_of(const std::string& image_name, const std::string& fallback) {
   const std::string stem = std::filesystem::path(image_name).stem().string();
   return stem.empty() ? fallback : stem;
@@ -81,6 +42,7 @@ nlohmann::json world_stats_json(const World& w) {
           {"spheres", s.spheres},
           {"instances", s.instances},
           {"materials", s.materials},
+          {"compiled_materials", s.compiled_materials},
           {"lights",
            {{"point", s.point_lights},
             {"spot", s.spot_lights},
@@ -169,9 +131,10 @@ int cmd_render(const RenderArgs& args) {
     if (!args.camera || c.id == *args.camera) cameras.push_back(&c);
   if (cameras.empty()) throw Error(args.scene, "", "no camera with id '" + *args.camera + "'");
 
+  const SceneRules rules = resolve_rules(scene, args.rules);
   WorldOptions wo;
   wo.accel = args.accel;
-  if (args.physical_lights) wo.course_conventions = false;
+  wo.ellipsoid_pdf = ellipsoid_pdf(rules, args.rules);
   const uint32_t aov_flags = args.aovs ? parse_aovs(*args.aovs) : 0u;
   const auto world = build_world_taking_meshes(scene, wo);
   if (!args.quiet) {
@@ -195,9 +158,8 @@ int cmd_render(const RenderArgs& args) {
 
   for (const CameraDesc* cd : cameras) {
     const Camera camera(*cd);
-    IntegratorSettings settings = settings_for_camera(*cd, scene);
-    apply_overrides(settings, args);
-    settings.features = args.all_features ? kFeatureAll : world->features;
+    const IntegratorSettings settings =
+        camera_settings(*cd, scene, rules, args.rules, args.all_features ? kFeatureAll : world->features);
     const uint32_t spp = args.spp.value_or(uint32_t(std::max(1, cd->num_samples)));
     uint32_t first = 0, last = spp;
     if (args.spp_range) std::tie(first, last) = parse_spp_range(*args.spp_range);
@@ -212,8 +174,8 @@ int cmd_render(const RenderArgs& args) {
     ro.reverse_tile_order = args.reverse_tiles;
     Film film(camera.width(), camera.height());
     if (!args.quiet)
-      std::fprintf(stderr, "kiln: camera %s: %dx%d, %u spp, %s\n", cd->id.c_str(), camera.width(), camera.height(), spp,
-                   settings.describe().c_str());
+      std::fprintf(stderr, "kiln: camera %s: %dx%d, %u spp, %s: %s\n", cd->id.c_str(), camera.width(), camera.height(),
+                   spp, rules_name(rules), settings.describe().c_str());
     RenderStats rs;
     std::optional<ErrorStats> final_error;
     std::string csv_path;
@@ -267,6 +229,7 @@ int cmd_render(const RenderArgs& args) {
                      {"kiln:spp_first", std::to_string(first)},
                      {"kiln:spp_last", std::to_string(last)},
                      {"kiln:seed", std::to_string(args.seed)},
+                     {"kiln:rules", rules_name(rules)},
                      {"kiln:integrator", settings.describe()},
                      {"kiln:render_seconds", std::to_string(rs.seconds)},
                      {"kiln:incomplete", rs.cancelled ? "true" : "false"}};
@@ -301,6 +264,7 @@ int cmd_render(const RenderArgs& args) {
                                 {"width", camera.width()},
                                 {"height", camera.height()},
                                 {"spp", spp},
+                                {"rules", rules_name(rules)},
                                 {"integrator", settings.describe()},
                                 {"render_seconds", rs.seconds},
                                 {"aov_seconds", aov_seconds},

@@ -39,13 +39,11 @@ SceneDesc small_default_scene(int res) {
 TEST(Convergence, StrategyNamesShareTheTransportRules) {
   SceneDesc scene;
   scene.max_recursion_depth = 3;
-  const IntegratorSettings base = convergence_base_settings(scene, kFeatureAll);
-  EXPECT_EQ(base.kind, RendererKind::PathTracing);
+  const PathSettings base = convergence_base_settings(scene);
   EXPECT_EQ(base.max_depth, 3);
-  EXPECT_EQ(base.course_roulette, CourseRoulette::Off);
-  EXPECT_FALSE(base.nee_at_last_vertex);
+  EXPECT_FALSE(base.russian_roulette);
   EXPECT_EQ(base.rr_min_depth, kStrategyRrMinDepth);
-  EXPECT_EQ(convergence_base_settings(SceneDesc{}, kFeatureAll).max_depth, 8);
+  EXPECT_EQ(convergence_base_settings(SceneDesc{}).max_depth, 8);
 
   struct Want {
     const char* name;
@@ -61,18 +59,20 @@ TEST(Convergence, StrategyNamesShareTheTransportRules) {
                         {"mis+rr", DirectionSampling::Brdf, true, true, true},
                         {"uniform+rr", DirectionSampling::Uniform, false, false, true}};
   for (const Want& w : wants) {
-    const NamedStrategy s = make_strategy(w.name, base);
+    const NamedStrategy s = make_strategy(w.name, base, kFeatureAll);
     EXPECT_EQ(s.name, w.name);
-    EXPECT_EQ(s.settings.directions, w.dirs) << w.name;
-    EXPECT_EQ(s.settings.nee, w.nee) << w.name;
-    EXPECT_EQ(s.settings.mis, w.mis) << w.name;
-    EXPECT_EQ(s.settings.russian_roulette, w.rr) << w.name;
-    EXPECT_EQ(s.settings.max_depth, 3) << w.name;
-    EXPECT_FALSE(s.settings.nee_at_last_vertex) << w.name;
+    // Every strategy is Kiln's own path tracer, never one of the course's integrators.
+    const PathSettings* p = std::get_if<PathSettings>(&s.settings.method);
+    ASSERT_NE(p, nullptr) << w.name;
+    EXPECT_EQ(p->directions, w.dirs) << w.name;
+    EXPECT_EQ(p->nee, w.nee) << w.name;
+    EXPECT_EQ(p->mis, w.mis) << w.name;
+    EXPECT_EQ(p->russian_roulette, w.rr) << w.name;
+    EXPECT_EQ(p->max_depth, 3) << w.name;
   }
   for (const char* bad : {"direct", "mis+", "+rr", "MIS", "nee+rr+rr", ""}) {
     try {
-      make_strategy(bad, base);
+      make_strategy(bad, base, kFeatureAll);
       ADD_FAILURE() << "accepted '" << bad << "'";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("--strategies"), std::string::npos) << e.what();
@@ -100,12 +100,12 @@ TEST(Convergence, MisBeatsUniformOnTheCornellBox) {
   const SceneDesc scene = small_default_scene(24);
   const auto world = build_world(scene, {});
   const Camera cam(scene.cameras[0]);
-  const IntegratorSettings base = convergence_base_settings(scene, world->features);
+  const PathSettings base = convergence_base_settings(scene);
   RenderOptions ro;
   ro.seed = 12345;
   ro.spp_total = 512;
   Film ref_film(cam.width(), cam.height());
-  render_samples(*world, cam, make_strategy("mis", base).settings, ro, 0, 512, ref_film);
+  render_samples(*world, cam, make_strategy("mis", base, world->features).settings, ro, 0, 512, ref_film);
   const Image reference = ref_film.mean();
 
   ConvergenceOptions co;
@@ -113,7 +113,7 @@ TEST(Convergence, MisBeatsUniformOnTheCornellBox) {
   co.budget_seconds = 0.6;
   std::vector<StrategySummary> summaries;
   for (const char* name : {"uniform", "mis"}) {
-    const std::vector<ConvergencePoint> pts = measure_strategy(*world, cam, make_strategy(name, base), reference, co);
+    const std::vector<ConvergencePoint> pts = measure_strategy(*world, cam, make_strategy(name, base, world->features), reference, co);
     ASSERT_GE(pts.size(), 3u) << name;
     for (size_t i = 0; i < pts.size(); ++i) {
       EXPECT_EQ(pts[i].strategy, name);

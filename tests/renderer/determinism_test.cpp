@@ -9,46 +9,46 @@
 namespace kiln::test {
 namespace {
 
-SceneDesc small_default_scene() {
-  SceneDesc s = load_scene(std::string(KILN_SOURCE_DIR) + "/scenes/default.xml");
-  s.cameras[0].width = s.cameras[0].height = 40;
-  return s;
-}
-
 bool bit_identical(const Image& a, const Image& b) {
   return a.width() == b.width() && a.height() == b.height() &&
          std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
 
 TEST(Determinism, ThreadCountAndTileOrderDoNotChangePixels) {
-  const SceneDesc scene = small_default_scene();
-  const auto world = build_world(scene, {});
-  const IntegratorSettings s = settings_for_camera(scene.cameras[0], scene);
-  const Image one = render_image(*world, scene.cameras[0], s, 8, 42, 1);
-  const Image two = render_image(*world, scene.cameras[0], s, 8, 42, 2);
-  const Image reversed = render_image(*world, scene.cameras[0], s, 8, 42, 2, true);
-  EXPECT_TRUE(bit_identical(one, two));
-  EXPECT_TRUE(bit_identical(one, reversed));
-  // And the seed matters (the comparison can fail).
-  const Image other_seed = render_image(*world, scene.cameras[0], s, 8, 43, 2);
-  EXPECT_FALSE(bit_identical(one, other_seed));
+  for (const RuleCase& rc : default_scene_rule_cases(40)) {
+    SCOPED_TRACE(rc.name);
+    const SceneDesc& scene = rc.scene;
+    const auto world = build_world(scene, {});
+    const IntegratorSettings s = scene_settings(scene.cameras[0], scene, world->features);
+    const Image one = render_image(*world, scene.cameras[0], s, 8, 42, 1);
+    const Image two = render_image(*world, scene.cameras[0], s, 8, 42, 2);
+    const Image reversed = render_image(*world, scene.cameras[0], s, 8, 42, 2, true);
+    EXPECT_TRUE(bit_identical(one, two));
+    EXPECT_TRUE(bit_identical(one, reversed));
+    // And the seed matters (the comparison can fail).
+    const Image other_seed = render_image(*world, scene.cameras[0], s, 8, 43, 2);
+    EXPECT_FALSE(bit_identical(one, other_seed));
+  }
 }
 
 TEST(Determinism, SampleRangesMergeToTheFullRender) {
-  const SceneDesc scene = small_default_scene();
-  const auto world = build_world(scene, {});
-  const IntegratorSettings s = settings_for_camera(scene.cameras[0], scene);
-  const Camera cam(scene.cameras[0]);
-  RenderOptions ro;
-  ro.seed = 5;
-  ro.spp_total = 8;
-  Film full(cam.width(), cam.height()), waves(cam.width(), cam.height());
-  render_samples(*world, cam, s, ro, 0, 8, full);
-  render_samples(*world, cam, s, ro, 0, 1, waves);
-  render_samples(*world, cam, s, ro, 1, 2, waves);
-  render_samples(*world, cam, s, ro, 2, 4, waves);
-  render_samples(*world, cam, s, ro, 4, 8, waves);
-  EXPECT_TRUE(bit_identical(full.mean(), waves.mean()));
+  for (const RuleCase& rc : default_scene_rule_cases(40)) {
+    SCOPED_TRACE(rc.name);
+    const SceneDesc& scene = rc.scene;
+    const auto world = build_world(scene, {});
+    const IntegratorSettings s = scene_settings(scene.cameras[0], scene, world->features);
+    const Camera cam(scene.cameras[0]);
+    RenderOptions ro;
+    ro.seed = 5;
+    ro.spp_total = 8;
+    Film full(cam.width(), cam.height()), waves(cam.width(), cam.height());
+    render_samples(*world, cam, s, ro, 0, 8, full);
+    render_samples(*world, cam, s, ro, 0, 1, waves);
+    render_samples(*world, cam, s, ro, 1, 2, waves);
+    render_samples(*world, cam, s, ro, 2, 4, waves);
+    render_samples(*world, cam, s, ro, 4, 8, waves);
+    EXPECT_TRUE(bit_identical(full.mean(), waves.mean()));
+  }
 }
 
 }  // namespace
@@ -64,7 +64,7 @@ TEST(Determinism, FeatureMaskSpecialisationDoesNotChangePixels) {
   const auto world = build_world(scene, {});
   ASSERT_FALSE(world->features & kFeatureDelta);
   ASSERT_FALSE(world->features & (kFeatureSpheres | kFeatureInstances));  // the meshes-only kernel
-  IntegratorSettings s;
+  IntegratorSettings s = PathSettings{};
   s.features = world->features;
   const Image specialised = render_image(*world, scene.cameras[0], s, 4, 3);
   s.features = kFeatureAll;
@@ -92,7 +92,7 @@ TEST(Determinism, WorldTakingTheMeshesRendersTheSameImage) {
       if (!m.is_instance_base) left += m.positions.size() + m.indices.size() + m.normals.size() + m.uvs.size();
     EXPECT_EQ(left, 0u);
     EXPECT_EQ(copied->stats.triangles, taken->stats.triangles);
-    const IntegratorSettings s = settings_for_camera(scene.cameras[0], scene);
+    const IntegratorSettings s = scene_settings(scene.cameras[0], scene, copied->features);
     EXPECT_TRUE(bit_identical(render_image(*copied, scene.cameras[0], s, 2, 9), render_image(*taken, scene.cameras[0], s, 2, 9)));
   }
 }

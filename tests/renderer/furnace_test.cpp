@@ -15,9 +15,8 @@ struct FurnaceCase {
   int max_depth;
 };
 
-IntegratorSettings settings_of(const FurnaceCase& c) {
-  IntegratorSettings s;
-  s.kind = RendererKind::PathTracing;
+PathSettings settings_of(const FurnaceCase& c) {
+  PathSettings s;
   s.directions = c.dirs;
   s.nee = c.nee;
   s.mis = c.mis;
@@ -64,23 +63,21 @@ INSTANTIATE_TEST_SUITE_P(
                       FurnaceCase{"mis_rr_unbounded", DirectionSampling::Brdf, true, true, true, -1}),
     [](const auto& tp) { return std::string(tp.param.name); });
 
-// The course rule (NEE also at the vertex at MaxRecursionDepth) adds exactly one more bounce of light, for plain NEE
-// and for MIS alike: there no direction is sampled after NEE, so its MIS weight must be 1 (a weight < 1 would lose
-// the share the missing BRDF-sampled ray should have carried).
-TEST(Furnace, NeeAtTheLastVertexAddsOneBounceWithAndWithoutMis) {
-  for (const bool mis : {false, true})
-    for (const DirectionSampling dirs : {DirectionSampling::Brdf, DirectionSampling::Uniform}) {
-      const FurnaceCase fc{mis ? "mis_last_vertex_d3" : "nee_last_vertex_d3", dirs, true, mis, false, 3};
-      IntegratorSettings s = settings_of(fc);
-      s.nee_at_last_vertex = true;
-      const SceneDesc scene = furnace_box(0.8f, Rgb(1.0f));
-      const auto world = build_world(scene, {});
-      const Estimate e = estimate_mean(*world, s, scene.cameras[0], 200000);
-      const double want = expected(0.8, 1.0, 4);
-      EXPECT_NEAR(e.mean, want, 4.5 * e.stderr_ + 1e-4 * want)
-          << fc.name << (dirs == DirectionSampling::Uniform ? " uniform" : " brdf") << ": mean " << e.mean << " +- "
-          << e.stderr_ << ", expected " << want;
-    }
+// The course path tracer's rule (NEE also at the vertex at MaxRecursionDepth) adds exactly one more bounce of light,
+// with uniform and with BRDF-sampled directions.
+TEST(Furnace, CourseNeeAtTheLastVertexAddsOneBounce) {
+  for (const bool importance : {false, true}) {
+    CoursePathSettings s;
+    s.importance_sampling = importance;
+    s.nee = true;
+    s.max_depth = 3;
+    const SceneDesc scene = furnace_box(0.8f, Rgb(1.0f));
+    const auto world = build_world(scene, {});
+    const Estimate e = estimate_mean(*world, s, scene.cameras[0], 200000);
+    const double want = expected(0.8, 1.0, 4);
+    EXPECT_NEAR(e.mean, want, 4.5 * e.stderr_ + 1e-4 * want)
+        << (importance ? "brdf" : "uniform") << ": mean " << e.mean << " +- " << e.stderr_ << ", expected " << want;
+  }
 }
 
 // The course's RussianRoulette (CENG795 scenes) weights the direct light gathered at bounce k >= 1 by 2 - p_k,
@@ -100,33 +97,26 @@ double course_expected(double a, bool nee, int max_depth) {
 
 TEST(Furnace, CourseRouletteReachesTheCourseEstimatorsExpectation) {
   struct Case {
-    DirectionSampling dirs;
+    bool importance;
     bool nee;
     int max_depth;
     CourseRoulette mode;
   };
-  const Case cases[] = {{DirectionSampling::Uniform, false, -1, CourseRoulette::Expected},
-                        {DirectionSampling::Brdf, false, -1, CourseRoulette::Expected},
-                        {DirectionSampling::Uniform, true, -1, CourseRoulette::Expected},
-                        {DirectionSampling::Brdf, true, -1, CourseRoulette::Expected},
-                        {DirectionSampling::Brdf, false, 2, CourseRoulette::Expected},
-                        {DirectionSampling::Brdf, true, 2, CourseRoulette::Expected},
-                        {DirectionSampling::Uniform, false, 2, CourseRoulette::Literal},
-                        {DirectionSampling::Brdf, false, 2, CourseRoulette::Literal},
-                        {DirectionSampling::Brdf, true, 2, CourseRoulette::Literal}};
+  const Case cases[] = {{false, false, -1, CourseRoulette::Expected}, {true, false, -1, CourseRoulette::Expected},
+                        {false, true, -1, CourseRoulette::Expected},  {true, true, -1, CourseRoulette::Expected},
+                        {true, false, 2, CourseRoulette::Expected},   {true, true, 2, CourseRoulette::Expected},
+                        {false, false, 2, CourseRoulette::Literal},   {true, false, 2, CourseRoulette::Literal},
+                        {true, true, 2, CourseRoulette::Literal}};
   const float albedo = 0.5f;
   const SceneDesc scene = furnace_box(albedo, Rgb(1.0f));
   const auto world = build_world(scene, {});
   for (const Case& c : cases) {
-    IntegratorSettings s;
-    s.kind = RendererKind::PathTracing;
-    s.directions = c.dirs;
-    s.nee = c.nee;
-    s.mis = false;
-    s.russian_roulette = true;
-    s.course_roulette = c.mode;
-    s.nee_at_last_vertex = true;
-    s.max_depth = c.max_depth;
+    CoursePathSettings cs;
+    cs.importance_sampling = c.importance;
+    cs.nee = c.nee;
+    cs.roulette = c.mode;
+    cs.max_depth = c.max_depth;
+    const IntegratorSettings s = cs;
     const Estimate e = estimate_mean(*world, s, scene.cameras[0], 200000);
     const double want = course_expected(albedo, c.nee, c.max_depth);
     EXPECT_NEAR(e.mean, want, 4.5 * e.stderr_ + 1e-4 * want)
@@ -138,11 +128,39 @@ TEST(Furnace, CourseRouletteReachesTheCourseEstimatorsExpectation) {
   }
 }
 
+// Course materials without a specular lobe compile to Lambertians (scenes/material_mapping.h): written as each
+// Phong / Blinn-Phong form with the kd that gives albedo a (a/pi for the unnormalized forms, whose f is kd), the
+// furnace still gives Le * sum_k a^k.
+TEST(Furnace, ZeroSpecularCourseMaterialsKeepTheirAlbedo) {
+  constexpr float kAlbedo = 0.6f;
+  constexpr int kDepth = 4;
+  struct Case {
+    BrdfKind kind;
+    bool normalized;
+  };
+  for (const Case c : {Case{BrdfKind::OriginalPhong, false}, Case{BrdfKind::ModifiedPhong, true},
+                       Case{BrdfKind::OriginalBlinnPhong, false}, Case{BrdfKind::ModifiedBlinnPhong, false}}) {
+    SceneDesc scene = furnace_box(kAlbedo, Rgb(1.0f));
+    scene.brdfs[0].kind = c.kind;
+    scene.brdfs[0].normalized = c.normalized;
+    scene.brdfs[0].exponent = 20;
+    scene.materials[0].diffuse = Rgb(c.normalized ? kAlbedo : kAlbedo / kPi);
+    const auto world = build_world(scene, {});
+    ASSERT_EQ(world->materials[0].describe(), "lambert");
+    PathSettings s;
+    s.max_depth = kDepth;
+    s.russian_roulette = false;
+    const Estimate e = estimate_mean(*world, s, scene.cameras[0], 200000);
+    const double want = expected(kAlbedo, 1.0, kDepth);
+    EXPECT_NEAR(e.mean, want, 4.5 * e.stderr_ + 1e-4 * want) << int(c.kind) << ": mean " << e.mean << " +- " << e.stderr_;
+  }
+}
+
 // pbrt-style unit case: emission 1 - a makes the exact answer 1 for any albedo.
 TEST(Furnace, UnitRadiance) {
   const SceneDesc scene = furnace_box(0.7f, Rgb(0.3f));
   const auto world = build_world(scene, {});
-  IntegratorSettings s;
+  PathSettings s;
   s.max_depth = -1;
   s.russian_roulette = true;
   const Estimate e = estimate_mean(*world, s, scene.cameras[0], 200000);
@@ -201,7 +219,7 @@ TEST(Furnace, UnitSphereAndEllipsoidGiveOne) {
 TEST(Furnace, DetectsAMissingBounce) {
   const SceneDesc scene = furnace_box(0.5f, Rgb(1.0f));
   const auto world = build_world(scene, {});
-  IntegratorSettings s;
+  PathSettings s;
   s.max_depth = 4;
   s.russian_roulette = false;
   const Estimate e = estimate_mean(*world, s, scene.cameras[0], 200000);

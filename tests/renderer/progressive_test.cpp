@@ -25,10 +25,12 @@ struct Furnace {
   explicit Furnace(int res) : scene(furnace_box(kAlbedo, Rgb(1.0f))) {
     scene.cameras[0].width = scene.cameras[0].height = res;
     world = build_world(scene, {});
-    settings.max_depth = kDepth;
-    settings.russian_roulette = false;
-    settings.directions = DirectionSampling::Uniform;  // cosine sampling would be exact here (zero variance)
-    settings.nee = settings.mis = false;
+    PathSettings p;
+    p.max_depth = kDepth;
+    p.russian_roulette = false;
+    p.directions = DirectionSampling::Uniform;  // cosine sampling would be exact here (zero variance)
+    p.nee = p.mis = false;
+    settings = p;
   }
   Image exact() const {
     const CameraDesc& c = scene.cameras[0];
@@ -63,36 +65,35 @@ TEST(Progressive, PredictsTheNextWaveFromTimePerSample) {
 // The waves add exactly the samples a one-shot render of [0, max_spp) adds (with the same jittered pixel
 // positions), so a progressive render is as reproducible as a plain one.
 TEST(Progressive, WavesMatchAOneShotRenderBitForBit) {
-  const SceneDesc scene = [] {
-    SceneDesc s = load_scene(std::string(KILN_SOURCE_DIR) + "/scenes/default.xml");
-    s.cameras[0].width = s.cameras[0].height = 24;
-    return s;
-  }();
-  const auto world = build_world(scene, {});
-  const IntegratorSettings s = settings_for_camera(scene.cameras[0], scene);
-  const Camera cam(scene.cameras[0]);
-  RenderOptions ro;
-  ro.seed = 9;
-  Film waves(cam.width(), cam.height());
-  std::vector<uint32_t> seen;
-  ProgressiveOptions po;
-  po.on_wave = [&](const WaveReport& w) { seen.push_back(w.spp); };
-  const ProgressiveResult res = render_progressive(*world, cam, s, ro, 12, po, waves);
-  EXPECT_EQ(seen, (std::vector<uint32_t>{1, 2, 4, 8, 12}));
-  EXPECT_EQ(res.spp, 12u);
-  EXPECT_FALSE(res.stopped_by_time_limit);
-  EXPECT_FALSE(res.final_error.has_value());
-  ASSERT_EQ(res.waves.size(), 5u);
-  for (size_t i = 1; i < res.waves.size(); ++i) EXPECT_GE(res.waves[i].seconds, res.waves[i - 1].seconds);
+  for (const RuleCase& rc : default_scene_rule_cases(24)) {
+    SCOPED_TRACE(rc.name);
+    const SceneDesc& scene = rc.scene;
+    const auto world = build_world(scene, {});
+    const IntegratorSettings s = scene_settings(scene.cameras[0], scene, world->features);
+    const Camera cam(scene.cameras[0]);
+    RenderOptions ro;
+    ro.seed = 9;
+    Film waves(cam.width(), cam.height());
+    std::vector<uint32_t> seen;
+    ProgressiveOptions po;
+    po.on_wave = [&](const WaveReport& w) { seen.push_back(w.spp); };
+    const ProgressiveResult res = render_progressive(*world, cam, s, ro, 12, po, waves);
+    EXPECT_EQ(seen, (std::vector<uint32_t>{1, 2, 4, 8, 12}));
+    EXPECT_EQ(res.spp, 12u);
+    EXPECT_FALSE(res.stopped_by_time_limit);
+    EXPECT_FALSE(res.final_error.has_value());
+    ASSERT_EQ(res.waves.size(), 5u);
+    for (size_t i = 1; i < res.waves.size(); ++i) EXPECT_GE(res.waves[i].seconds, res.waves[i - 1].seconds);
 
-  RenderOptions one = ro;
-  one.spp_total = kProgressiveSppTotal;
-  Film once(cam.width(), cam.height());
-  render_samples(*world, cam, s, one, 0, 12, once);
-  const Image a = waves.mean(), b = once.mean();
-  EXPECT_EQ(std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)), 0);
-  for (int y = 0; y < cam.height(); ++y)
-    for (int x = 0; x < cam.width(); ++x) ASSERT_EQ(waves.at(x, y).n, 12u);
+    RenderOptions one = ro;
+    one.spp_total = kProgressiveSppTotal;
+    Film once(cam.width(), cam.height());
+    render_samples(*world, cam, s, one, 0, 12, once);
+    const Image a = waves.mean(), b = once.mean();
+    EXPECT_EQ(std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)), 0);
+    for (int y = 0; y < cam.height(); ++y)
+      for (int x = 0; x < cam.width(); ++x) ASSERT_EQ(waves.at(x, y).n, 12u);
+  }
 }
 
 // Against an exact reference the MSE of an unbiased estimator with independent samples is variance / spp (log MSE

@@ -15,9 +15,10 @@ std::string course(const std::string& rel) { return shared_dir() + "/scenes/ceng
 
 // Renders one camera of a course scene the way `kiln render` does; spp 0 keeps the scene's NumSamples.
 Image render_course_camera(const SceneDesc& scene, size_t camera, uint32_t spp) {
-  const auto world = build_world(scene, {});
+  const auto world = build_scene_world(scene);
   const CameraDesc& cd = scene.cameras.at(camera);
-  return render_image(*world, cd, settings_for_camera(cd, scene), spp ? spp : uint32_t(std::max(1, cd.num_samples)));
+  return render_image(*world, cd, scene_settings(cd, scene, world->features),
+                      spp ? spp : uint32_t(std::max(1, cd.num_samples)));
 }
 
 Image png_preview(const Image& img, const SceneDesc& scene, size_t camera) {

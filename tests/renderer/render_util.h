@@ -1,6 +1,7 @@
 // Helpers for renderer tests: scenes built in code and direct access to the integrators.
 #pragma once
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "renderer/film.h"
 #include "renderer/integrator.h"
 #include "renderer/render.h"
+#include "renderer/rules.h"
 #include "renderer/world.h"
 #include "scenes/loader.h"
 
@@ -59,6 +61,39 @@ inline SceneDesc furnace_box(float albedo, Rgb le) {
   return s;
 }
 
+// The world as kiln render builds it under the scene's own rules (their ellipsoid-light density).
+inline std::unique_ptr<World> build_scene_world(const SceneDesc& scene) {
+  WorldOptions wo;
+  wo.ellipsoid_pdf = ellipsoid_pdf(scene.rules, {});
+  return build_world(scene, wo);
+}
+
+// The settings the scene's own rules give camera cd (renderer/rules.h), without command-line overrides.
+inline IntegratorSettings scene_settings(const CameraDesc& cd, const SceneDesc& scene, uint32_t features = kFeatureAll) {
+  return camera_settings(cd, scene, scene.rules, {}, features);
+}
+
+// The bundled default scene at res x res under each integrator: Kiln's path tracer (its own rules), the course path
+// tracer (the CENG795 rules with every RendererParams flag: literal course roulette, NEE at the last vertex, the
+// Fresnel split) and the course ray tracer.
+struct RuleCase {
+  const char* name;
+  SceneDesc scene;
+};
+
+inline std::vector<RuleCase> default_scene_rule_cases(int res) {
+  SceneDesc kiln = load_scene(std::string(KILN_SOURCE_DIR) + "/scenes/default.xml");
+  kiln.cameras[0].width = kiln.cameras[0].height = res;
+  SceneDesc course_path = kiln;
+  course_path.rules = SceneRules::Ceng795Course;
+  course_path.cameras[0].renderer = RendererKind::PathTracing;
+  course_path.cameras[0].pt = PathTracingFlags{true, true, true};
+  SceneDesc course_rays = kiln;
+  course_rays.rules = SceneRules::Ceng795Course;
+  course_rays.cameras[0].renderer = RendererKind::RayTracing;
+  return {{"kiln", kiln}, {"course_path", course_path}, {"course_rays", course_rays}};
+}
+
 struct Estimate {
   double mean = 0, stderr_ = 0;
 };
@@ -102,6 +137,50 @@ inline Image render_image(const World& w, const CameraDesc& cd, const Integrator
   ro.reverse_tile_order = reverse;
   render_samples(w, cam, s, ro, 0, spp, film);
   return film.mean();
+}
+
+// Mean luminance of each block x block tile of camera cd (row-major) over spp samples of each of its pixels, with its
+// standard error. Rendered with the world's feature mask.
+inline std::vector<Estimate> block_estimates(const World& w, const CameraDesc& cd, IntegratorSettings s, uint32_t spp,
+                                             uint64_t seed, int block) {
+  s.features = w.features;
+  const Camera cam(cd);
+  const int bw = cam.width() / block, bh = cam.height() / block;
+  std::vector<Estimate> out(size_t(bw * bh));
+  tbb::parallel_for(0, int(out.size()), [&](int b) {
+    const int bx = b % bw, by = b / bw;
+    RayCounters c;
+    double sum = 0, sum2 = 0;
+    for (int py = by * block; py < (by + 1) * block; ++py)
+      for (int px = bx * block; px < (bx + 1) * block; ++px)
+        for (uint32_t i = 0; i < spp; ++i) {
+          Sampler sampler(seed, uint32_t(px), uint32_t(py), i);
+          sampler.set_dimension(kPixelDimension);
+          const Vec2f u = sampler.next_2d();
+          const Ray ray = cam.generate_ray(float(px) + u.x, float(py) + u.y, sampler.next_2d());
+          sampler.set_dimension(kFirstPathDimension);
+          const double v = trace(w, s, ray, sampler, c).luminance();
+          sum += v;
+          sum2 += v * v;
+        }
+    out[size_t(b)] = estimate_from_sums(sum, sum2, double(block * block) * spp);
+  });
+  return out;
+}
+
+// The largest |z| over blocks between two sets of block estimates, and where it occurred.
+struct Worst {
+  double z = 0;
+  int block = -1;
+};
+inline Worst worst_block(const std::vector<Estimate>& a, const std::vector<Estimate>& b) {
+  Worst w;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double se = std::hypot(a[i].stderr_, b[i].stderr_);
+    const double z = se > 0 ? std::abs(a[i].mean - b[i].mean) / se : (a[i].mean == b[i].mean ? 0.0 : INFINITY);
+    if (z > w.z) w = {z, int(i)};
+  }
+  return w;
 }
 
 }  // namespace kiln::test

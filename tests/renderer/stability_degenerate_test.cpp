@@ -20,15 +20,15 @@ class Degenerate : public AccelParam {
     Image last;
     const std::tuple<bool, bool, bool> modes[] = {{false, false, false}, {true, false, false}, {true, true, true}};
     for (const auto& [nee, mis, rr] : modes) {
-      IntegratorSettings st = stability_settings(s, *w);
+      PathSettings st = stability_settings(s);
       st.nee = nee;
       st.mis = mis;
       st.russian_roulette = rr;
       const Rendered r = render_film(*w, s.cameras[0], st, kSpp);
-      EXPECT_EQ(r.stats.rays.nan_samples, 0u) << st.describe() << ", first at pixel " << r.stats.nan_x << ","
+      EXPECT_EQ(r.stats.rays.nan_samples, 0u) << IntegratorSettings(st).describe() << ", first at pixel " << r.stats.nan_x << ","
                                               << r.stats.nan_y;
       last = r.mean();
-      EXPECT_TRUE(all_finite_non_negative(last)) << st.describe();
+      EXPECT_TRUE(all_finite_non_negative(last)) << IntegratorSettings(st).describe();
     }
     return last;
   }

@@ -2,7 +2,7 @@
 // break into speckles (self-shadowing), rings (sphere intersection losing its discriminant) or light leaks.
 #include <gtest/gtest.h>
 
-#include "renderer/accel/hit_point.h"
+#include "renderer/accel/surface_point.h"
 #include "stability_util.h"
 
 namespace kiln::test {
@@ -26,7 +26,7 @@ TEST_P(FarOrigin, TranslatedSceneRendersTheSameImage) {
   far_away.offset = kFarCentre;
   const SceneDesc a = cornell_box(near_origin, kResolution), b = cornell_box(far_away, kResolution);
   const auto wa = build_world(a, world_options()), wb = build_world(b, world_options());
-  const IntegratorSettings s = stability_settings(a, *wa);
+  const PathSettings s = stability_settings(a);
   // Same seed: both renders draw the same random numbers, so they differ only where the arithmetic does.
   const Rendered ra = render_film(*wa, a.cameras[0], s, kSpp, 3);
   const Rendered rb = render_film(*wb, b.cameras[0], s, kSpp, 3);
@@ -102,7 +102,7 @@ TEST_P(FarOrigin, BouncesInsideAClosedMeshStayInside) {
         ++escapes;
         break;
       }
-      const Vec3f p = hit_point(g, r, h);
+      const Vec3f p = surface_point(g, r, h).p;
       const Vec3f ng = normalize(h.ng);
       // Diffuse-like bounce back into the side the ray came from.
       Vec3f n = dot(ng, r.d) < 0.0f ? ng : -ng;

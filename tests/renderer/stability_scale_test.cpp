@@ -32,7 +32,7 @@ ScaledRender render_at_scale(float scale, AccelKind accel, uint64_t seed = 7) {
   WorldOptions wo;
   wo.accel = accel;
   const auto w = build_world(s, wo);
-  const Rendered r = render_film(*w, s.cameras[0], stability_settings(s, *w), kSpp, seed);
+  const Rendered r = render_film(*w, s.cameras[0], stability_settings(s), kSpp, seed);
   return {r.mean(), r.stats};
 }
 

@@ -69,14 +69,13 @@ SceneDesc furnace_with_glass(int res) {
   return s;
 }
 
-IntegratorSettings unbounded(DirectionSampling dirs, bool nee, bool mis, const World& w) {
-  IntegratorSettings st;
+PathSettings unbounded(DirectionSampling dirs, bool nee, bool mis) {
+  PathSettings st;
   st.directions = dirs;
   st.nee = nee;
   st.mis = mis;
   st.russian_roulette = true;
   st.max_depth = -1;
-  st.features = w.features;
   return st;
 }
 
@@ -91,12 +90,15 @@ TEST_P(Stiff, DielectricsVanishInAFurnace) {
   constexpr int kDeepDepth = 24;
   SceneDesc s = furnace_with_glass(kResolution);
   const auto w = build_world(s, world_options());
-  // Also with the course's Fresnel split (both branches followed, each with its weight) instead of sampling one.
+  // Kiln's path tracer samples one Fresnel branch; the course path tracer follows both, each with its weight.
+  PathSettings kiln = unbounded(DirectionSampling::Brdf, true, true);
+  kiln.russian_roulette = false;
+  kiln.max_depth = kDeepDepth;
+  CoursePathSettings course;
+  course.importance_sampling = course.nee = true;
+  course.max_depth = kDeepDepth;
   for (const bool split : {false, true}) {
-    IntegratorSettings st = unbounded(DirectionSampling::Brdf, true, true, *w);
-    st.russian_roulette = false;
-    st.max_depth = kDeepDepth;
-    st.split_delta = split;
+    const IntegratorSettings st = split ? IntegratorSettings(course) : IntegratorSettings(kiln);
     const Rendered r = render_film(*w, s.cameras[0], st, 64);
     EXPECT_EQ(r.stats.rays.nan_samples, 0u);
     EXPECT_TRUE(all_finite_non_negative(r.mean()));
@@ -113,7 +115,7 @@ TEST_P(Stiff, DielectricsVanishInAFurnace) {
 TEST_P(Stiff, DielectricsWithRouletteStayUnbiased) {
   SceneDesc s = furnace_with_glass(kResolution);
   const auto w = build_world(s, world_options());
-  const Rendered r = render_film(*w, s.cameras[0], unbounded(DirectionSampling::Brdf, true, true, *w), 64);
+  const Rendered r = render_film(*w, s.cameras[0], unbounded(DirectionSampling::Brdf, true, true), 64);
   EXPECT_EQ(r.stats.rays.nan_samples, 0u);
   EXPECT_TRUE(all_finite_non_negative(r.mean()));
   const MeanEstimate m = film_mean(r.film);
@@ -135,8 +137,8 @@ TEST_P(Stiff, NarrowGlossyLobesStayBelowTheFurnaceBound) {
   add_sphere(s, {0.35f, 0.35f, -0.6f}, 0.3f, glossy(BrdfKind::ModifiedBlinnPhong));
   add_sphere(s, {0.1f, -0.5f, -0.5f}, 0.3f, glossy(BrdfKind::TorranceSparrow, 1.5f));
   const auto w = build_world(s, world_options());
-  const Rendered mis = render_film(*w, s.cameras[0], unbounded(DirectionSampling::Brdf, true, true, *w), 64, 1);
-  const Rendered brdf = render_film(*w, s.cameras[0], unbounded(DirectionSampling::Brdf, false, false, *w), 64, 2);
+  const Rendered mis = render_film(*w, s.cameras[0], unbounded(DirectionSampling::Brdf, true, true), 64, 1);
+  const Rendered brdf = render_film(*w, s.cameras[0], unbounded(DirectionSampling::Brdf, false, false), 64, 2);
   for (const Rendered* r : {&mis, &brdf}) {
     EXPECT_EQ(r->stats.rays.nan_samples, 0u);
     EXPECT_TRUE(all_finite_non_negative(r->mean()));
@@ -161,9 +163,9 @@ TEST_P(Stiff, TinyBrightLightNextToADimOne) {
   tiny.emission = Rgb(1e6f);
   s.spheres.push_back(tiny);
   const auto w = build_world(s, world_options());
-  IntegratorSettings st = stability_settings(s, *w);
+  PathSettings st = stability_settings(s);
   st.russian_roulette = false;
-  IntegratorSettings nee = st;
+  PathSettings nee = st;
   nee.mis = false;
   const Rendered a = render_film(*w, s.cameras[0], st, 64, 1);
   const Rendered b = render_film(*w, s.cameras[0], nee, 64, 2);

@@ -133,12 +133,7 @@ inline SceneDesc cornell_box(const BoxPlacement& at, int resolution, float light
 }
 
 // Kiln's default path tracer (MIS, roulette after depth 3) with the scene's depth.
-inline IntegratorSettings stability_settings(const SceneDesc& s, const World& w) {
-  IntegratorSettings st;
-  st.max_depth = s.max_recursion_depth.value_or(8);
-  st.features = w.features;
-  return st;
-}
+inline PathSettings stability_settings(const SceneDesc& s) { return kiln_path_defaults(s); }
 
 struct Rendered {
   Film film;
@@ -146,8 +141,10 @@ struct Rendered {
   Image mean() const { return film.mean(); }
 };
 
-inline Rendered render_film(const World& w, const CameraDesc& cd, const IntegratorSettings& s, uint32_t spp,
+// Renders with the world's feature mask (the integrator specialised as kiln render would).
+inline Rendered render_film(const World& w, const CameraDesc& cd, IntegratorSettings s, uint32_t spp,
                             uint64_t seed = 1) {
+  s.features = w.features;
   const Camera cam(cd);
   Rendered r{Film(cam.width(), cam.height()), {}};
   RenderOptions ro;

@@ -3,7 +3,6 @@
 // and a large ceiling light (so delta bounces, caustics reached only by sampled rays, glossy lobes and MIS weights
 // all matter), each strategy's block means are compared with MIS's, block by block, against the noise both carry.
 #include <gtest/gtest.h>
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdio>
@@ -18,7 +17,6 @@ namespace {
 
 constexpr int kResolution = 16;
 constexpr int kBlock = 4;  // 4x4 blocks of 4x4 pixels
-constexpr int kBlocksPerSide = kResolution / kBlock;
 constexpr int kMaxDepth = 4;
 // Strategies that find light only by hitting emitters see the caustic under the glass sphere as rare, large samples:
 // their block means are skewed (a run that misses the rare paths is low *and* reports a small error), so they get
@@ -32,47 +30,6 @@ constexpr uint32_t kReferenceSamplesPerPixel = 16384;
 // alpha 6e-6, |z| < 4.5). The standard errors come from the sample variance, which overestimates the error of
 // the stratified samples of a pixel (hence the small |z| above).
 constexpr double kZBound = 4.5;
-
-// Mean luminance of each block over samples spread evenly over its pixels, with its standard error.
-std::vector<Estimate> block_estimates(const World& w, const CameraDesc& cd, const IntegratorSettings& s,
-                                           uint32_t spp, uint64_t seed) {
-  const Camera cam(cd);
-  std::vector<Estimate> out(kBlocksPerSide * kBlocksPerSide);
-  tbb::parallel_for(0, int(out.size()), [&](int b) {
-    const int bx = b % kBlocksPerSide, by = b / kBlocksPerSide;
-    RayCounters c;
-    double sum = 0, sum2 = 0;
-    for (int py = by * kBlock; py < (by + 1) * kBlock; ++py)
-      for (int px = bx * kBlock; px < (bx + 1) * kBlock; ++px)
-        for (uint32_t i = 0; i < spp; ++i) {
-          Sampler sampler(seed, uint32_t(px), uint32_t(py), i);
-          sampler.set_dimension(kPixelDimension);
-          const Vec2f u = sampler.next_2d();
-          const Ray ray = cam.generate_ray(float(px) + u.x, float(py) + u.y, sampler.next_2d());
-          sampler.set_dimension(kFirstPathDimension);
-          const double v = trace(w, s, ray, sampler, c).luminance();
-          sum += v;
-          sum2 += v * v;
-        }
-    out[size_t(b)] = estimate_from_sums(sum, sum2, double(kBlock * kBlock) * spp);
-  });
-  return out;
-}
-
-// The largest |z| over blocks between two sets of block estimates, and where it occurred.
-struct Worst {
-  double z = 0;
-  int block = -1;
-};
-Worst worst_block(const std::vector<Estimate>& a, const std::vector<Estimate>& b) {
-  Worst w;
-  for (size_t i = 0; i < a.size(); ++i) {
-    const double se = std::hypot(a[i].stderr_, b[i].stderr_);
-    const double z = se > 0 ? std::abs(a[i].mean - b[i].mean) / se : (a[i].mean == b[i].mean ? 0.0 : INFINITY);
-    if (z > w.z) w = {z, int(i)};
-  }
-  return w;
-}
 
 class StrategyAgreement : public ::testing::Test {
  protected:
@@ -90,20 +47,19 @@ class StrategyAgreement : public ::testing::Test {
       }
     }
     world_ = build_world(scene_, {});
-    base_.kind = RendererKind::PathTracing;
     base_.max_depth = kMaxDepth;
+    base_.russian_roulette = false;
     base_.rr_min_depth = 1;  // roulette from the first bounce: the harshest test of its compensation
-    base_.features = world_->features;
-    reference_ = block_estimates(*world_, scene_.cameras[0], settings("mis"), kReferenceSamplesPerPixel, kReferenceSeed);
+    reference_ = block_estimates(*world_, scene_.cameras[0], settings("mis"), kReferenceSamplesPerPixel, kReferenceSeed, kBlock);
   }
   // A strategy of `kiln converge` (uniform, cosine, brdf, nee, mis, optionally +rr) with this test's depth.
-  IntegratorSettings settings(const char* strategy) const { return make_strategy(strategy, base_).settings; }
+  PathSettings settings(const char* strategy) const { return kiln_strategy(strategy, base_, "strategy"); }
   static constexpr uint64_t kReferenceSeed = 1000;
   static constexpr float kLightHalf = 160.0f;     // grid units; the box's half-size is 256
   static constexpr float kLightRadiance = 2.5f;
   SceneDesc scene_;
   std::unique_ptr<World> world_;
-  IntegratorSettings base_;
+  PathSettings base_;
   std::vector<Estimate> reference_;
 };
 
@@ -117,11 +73,11 @@ TEST_F(StrategyAgreement, EveryStrategyMatchesMisBlockByBlock) {
                         {"mis", true}, {"uniform+rr"}, {"brdf+rr"}, {"nee+rr"}, {"mis+rr"}};
   uint64_t seed = 1;
   for (const Case& c : cases) {
-    IntegratorSettings s = settings(c.strategy);
+    PathSettings s = settings(c.strategy);
     if (c.uniform_directions) s.directions = DirectionSampling::Uniform;
     const std::string name = std::string(c.strategy) + (c.uniform_directions ? "_uniform" : "");
     const uint32_t spp = s.nee ? kSamplesPerPixelWithNee : kSamplesPerPixelWithoutNee;
-    const auto blocks = block_estimates(*world_, scene_.cameras[0], s, spp, seed++);
+    const auto blocks = block_estimates(*world_, scene_.cameras[0], s, spp, seed++, kBlock);
     const Worst w = worst_block(blocks, reference_);
     ASSERT_GE(w.block, 0) << name;
     const Estimate& got = blocks[size_t(w.block)];
@@ -135,9 +91,9 @@ TEST_F(StrategyAgreement, EveryStrategyMatchesMisBlockByBlock) {
 // The comparison can fail: one bounce fewer (what a wrong depth count, a lost NEE contribution or a doubly counted
 // emitter would resemble) is rejected at the same bound.
 TEST_F(StrategyAgreement, DetectsAMissingBounce) {
-  IntegratorSettings s = settings("cosine");
+  PathSettings s = settings("cosine");
   s.max_depth = kMaxDepth - 1;
-  const auto blocks = block_estimates(*world_, scene_.cameras[0], s, kSamplesPerPixelWithoutNee, 77);
+  const auto blocks = block_estimates(*world_, scene_.cameras[0], s, kSamplesPerPixelWithoutNee, 77, kBlock);
   const Worst w = worst_block(blocks, reference_);
   EXPECT_GT(w.z, kZBound);
   std::printf("one bounce fewer: worst block %d at |z| = %.1f\n", w.block, w.z);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <optional>
 
 #include "core/error.h"
 #include "scenes/loader.h"
@@ -88,6 +89,77 @@ TEST(MaterialMapping, BrdfKindsAndVariants) {
       EXPECT_EQ(std::get<BlinnPhong>(mat.surface).exponent, 50.0f);
     }
   }
+}
+
+// A lobe whose reflectance is zero is left out: a Phong / Blinn-Phong form or Torrance-Sparrow without ks compiles to
+// the Lambertian with the same f and the same sampling pdf at every pair of directions (so the same estimator).
+TEST(MaterialMapping, ZeroSpecularLobeCompilesToLambert) {
+  const Rgb kd(0.3f, 0.2f, 0.1f);
+  struct Case {
+    const char* name;
+    std::optional<BrdfKind> kind;  // none: the classic course shading
+    bool normalized;
+    SurfaceBrdf uncompiled;
+  };
+  const Case cases[] = {
+      {"classic", std::nullopt, false, BlinnPhong{kd, Rgb(0), 30, PhongVariant::Original}},
+      {"phong original", BrdfKind::OriginalPhong, false, Phong{kd, Rgb(0), 30, PhongVariant::Original}},
+      {"phong modified", BrdfKind::ModifiedPhong, false, Phong{kd, Rgb(0), 30, PhongVariant::Modified}},
+      {"phong normalized", BrdfKind::ModifiedPhong, true, Phong{kd, Rgb(0), 30, PhongVariant::ModifiedNormalized}},
+      {"blinn original", BrdfKind::OriginalBlinnPhong, false, BlinnPhong{kd, Rgb(0), 30, PhongVariant::Original}},
+      {"blinn modified", BrdfKind::ModifiedBlinnPhong, false, BlinnPhong{kd, Rgb(0), 30, PhongVariant::Modified}},
+      {"blinn normalized", BrdfKind::ModifiedBlinnPhong, true,
+       BlinnPhong{kd, Rgb(0), 30, PhongVariant::ModifiedNormalized}},
+      {"torrance-sparrow", BrdfKind::TorranceSparrow, false, TorranceSparrow{kd, Rgb(0), 30, 1.5f, 0.0f, false}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    MaterialDesc m = plain(kd, Rgb(0));
+    m.phong_exponent = 30;
+    m.has_refraction_index = true;
+    m.refraction_index = 1.5f;
+    SceneDesc scene;
+    if (c.kind) {
+      BrdfDesc b;
+      b.kind = *c.kind;
+      b.normalized = c.normalized;
+      b.exponent = 30;
+      scene = scene_with_brdf(b);
+      m.brdf = 0;
+    }
+    const Material compiled = build_material(m, scene);
+    ASSERT_TRUE(std::holds_alternative<Lambert>(compiled.surface));
+    EXPECT_EQ(compiled.describe(), "lambert");
+    Material reference;
+    reference.surface = c.uncompiled;
+    uint64_t state = 0x9e3779b97f4a7c15ull;
+    auto next = [&state] {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      return float(state >> 40) * 0x1p-24f;
+    };
+    auto direction = [&] {
+      const float z = next(), phi = 6.2831853f * next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+      return Vec3f(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    for (int i = 0; i < 1000; ++i) {
+      const Vec3f wo = direction(), wi = direction();
+      const Rgb a = compiled.eval(wo, wi), b = reference.eval(wo, wi);
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k], b[k], 1e-6f * b[k] + 1e-12f) << "channel " << k;
+      EXPECT_NEAR(compiled.pdf(wo, wi), reference.pdf(wo, wi), 1e-6f * reference.pdf(wo, wi) + 1e-12f);
+    }
+  }
+  // Torrance-Sparrow with kdfresnel weights its diffuse term by 1 - F(wo, wi): not a Lambertian, kept.
+  BrdfDesc ts;
+  ts.kind = BrdfKind::TorranceSparrow;
+  ts.kd_fresnel = true;
+  MaterialDesc m = plain(kd, Rgb(0));
+  m.brdf = 0;
+  m.has_refraction_index = true;
+  m.refraction_index = 1.5f;
+  EXPECT_TRUE(std::holds_alternative<TorranceSparrow>(build_material(m, scene_with_brdf(ts)).surface));
+  // A non-zero specular lobe is kept.
+  m.specular = Rgb(0.1f);
+  EXPECT_TRUE(std::holds_alternative<TorranceSparrow>(build_material(m, scene_with_brdf(ts)).surface));
 }
 
 TEST(MaterialMapping, TorranceSparrowIndexSources) {
@@ -307,8 +379,9 @@ TEST(MaterialMappingScenes, PathTracingGlass2019) {
   ASSERT_EQ(mats.size(), 8u);
   EXPECT_FALSE(mats[0].has_surface());  // the light's all-zero material
   EXPECT_FALSE(mats[0].has_delta());
-  ASSERT_TRUE(std::holds_alternative<Phong>(mats[1].surface));
-  EXPECT_EQ(std::get<Phong>(mats[1].surface).variant, PhongVariant::ModifiedNormalized);
+  // Its diffuse walls are normalized Phong without a specular lobe: compiled to Lambert(kd).
+  ASSERT_TRUE(std::holds_alternative<Lambert>(mats[1].surface));
+  EXPECT_EQ(std::get<Lambert>(mats[1].surface).reflectance, Rgb(0.803922f));
   ASSERT_TRUE(std::holds_alternative<Dielectric>(mats[6].delta));
   EXPECT_EQ(std::get<Dielectric>(mats[6].delta).eta, 2.0f);
   EXPECT_NEAR(mats[6].transmittance(1.0f).r, 0.99f, 1e-6f);

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "accel_test_util.h"
-#include "renderer/accel/hit_point.h"
+#include "renderer/accel/surface_point.h"
 
 namespace kiln {
 namespace {
@@ -58,7 +58,7 @@ TEST(Reintersection, SpawnedRaysDoNotHitTheirOwnSurface) {
         const Ray primary{o, target - o};
         Hit h;
         if (!acc->intersect(primary, h)) continue;
-        const Vec3f p = hit_point(g, primary, h);
+        const Vec3f p = surface_point(g, primary, h).p;
         const Vec3f ng = normalize(h.ng);
         for (int j = 0; j < kSpawnedPerHit; ++j) {
           // Both sides: reflection-like and transmission-like directions.

@@ -7,7 +7,7 @@
 // - refraction weighs 1 - F, without the 1/eta^2 radiance scaling (it cancels for a path that enters and
 //   leaves a closed object, but not for paths that end inside, e.g. on the mirror floor the tree stands in);
 // - every spawned ray (shadow, reflection, refraction) starts ShadowRayEpsilon along the geometric normal on
-//   its side (settings.course_ray_epsilon; 0 falls back to Kiln's ulp-based offset).
+//   its side (CourseRaySettings::ray_epsilon; 0 falls back to Kiln's ulp-based offset).
 #include "renderer/integrator.h"
 #include "renderer/ray_query.h"
 #include "renderer/shading.h"
@@ -29,7 +29,7 @@ Ray spawn_course_shadow_ray(const SurfaceInteraction& si, Vec3f target, float ep
   return Ray{o, target - o, 0.0f, kShadowRayEndFraction};
 }
 
-Rgb direct_from_lights(const World& w, const IntegratorSettings& s, const SurfaceInteraction& si,
+Rgb direct_from_lights(const World& w, const CourseRaySettings& s, const SurfaceInteraction& si,
                        const Frame& frame, Vec3f wo, Sampler& sampler, RayCounters& c) {
   Rgb sum(0.0f);
   const Vec3f wo_l = frame.to_local(wo);
@@ -41,14 +41,14 @@ Rgb direct_from_lights(const World& w, const IntegratorSettings& s, const Surfac
     const Vec3f wi_l = frame.to_local(ls->wi);
     const Rgb f = si.material->eval(wo_l, wi_l);
     if (f.is_black()) continue;
-    const Ray shadow = spawn_course_shadow_ray(si, ls->p_light, s.course_ray_epsilon);
+    const Ray shadow = spawn_course_shadow_ray(si, ls->p_light, s.ray_epsilon);
     if (query_occluded(w, shadow, c)) continue;
     sum += f * ls->li * (abs_cos_theta(wi_l) / ls->pdf);
   }
   return sum;
 }
 
-Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray, int depth, Sampler& sampler,
+Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, int depth, Sampler& sampler,
                     RayCounters& c) {
   Hit hit;
   if (!query_intersect(w, ray, hit, c, depth == 0)) return w.background;
@@ -75,7 +75,7 @@ Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray,
       const Vec3f wi = frame.to_world(*wi_l);
       // Undo the radiance scaling: the course weighs refraction by 1 - F alone.
       const Rgb weight = branches[i].transmission ? branches[i].weight * sqr(branches[i].etap) : branches[i].weight;
-      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.course_ray_epsilon), depth + 1, sampler, c);
+      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.ray_epsilon), depth + 1, sampler, c);
     }
   }
   return L * attenuation;
@@ -83,7 +83,8 @@ Rgb trace_recursive(const World& w, const IntegratorSettings& s, const Ray& ray,
 
 }  // namespace
 
-Rgb trace_direct(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c) {
+Rgb trace_course_rays(const World& world, const CourseRaySettings& s, const Ray& ray, Sampler& sampler,
+                      RayCounters& c) {
   return trace_recursive(world, s, ray, 0, sampler, c);
 }
 

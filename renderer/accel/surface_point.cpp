@@ -1,0 +1,73 @@
+#include "renderer/accel/surface_point.h"
+
+#include "renderer/accel/object_ray.h"
+
+namespace kiln {
+namespace {
+
+Vec3f unit_or_z(Vec3f n) {
+  const float len = length(n);
+  return len > 0.0f ? n / len : Vec3f(0, 0, 1);
+}
+
+// Barycentric position from the triangle's own vertices: far more precise than ray.o + t * ray.d far from the
+// origin, which keeps the ulp-based spawn offset valid.
+Vec3f barycentric_point(const TriangleMesh& m, const Hit& hit) {
+  return m.vertex(hit.prim, 0) * (1.0f - hit.u - hit.v) + m.vertex(hit.prim, 1) * hit.u + m.vertex(hit.prim, 2) * hit.v;
+}
+
+SurfacePoint on_sphere(const SphereShape& s, const Ray& ray, float t) {
+  const bool xf = !s.to_world.is_identity();
+  Vec3f o = ray.o, d = ray.d;
+  if (xf) to_object_space(s.to_world.inverse(), o, d);
+  const Vec3f rel = o + d * t - s.center;
+  const float len = length(rel);
+  const Vec3f dir = len > 0.0f ? rel / len : Vec3f(0, 0, 1);
+  const Vec3f p = s.center + dir * s.radius;
+  return xf ? SurfacePoint{s.to_world.point(p), unit_or_z(s.to_world.normal(dir))} : SurfacePoint{p, dir};
+}
+
+}  // namespace
+
+template <bool kMeshesOnly>
+SurfacePoint surface_point(const WorldGeometry& g, const Ray& ray, const Hit& hit) {
+  const Shape& s = g.shapes[hit.shape];
+  const ShapeKind kind = kMeshesOnly ? ShapeKind::Mesh : s.kind;
+  switch (kind) {
+    case ShapeKind::Mesh: {
+      const TriangleMesh& m = g.meshes[s.index];
+      const Vec3f a = m.vertex(hit.prim, 0);
+      return {barycentric_point(m, hit), unit_or_z(cross(m.vertex(hit.prim, 1) - a, m.vertex(hit.prim, 2) - a))};
+    }
+    case ShapeKind::Instance: {
+      const MeshInstance& inst = g.instances[s.index];
+      return {inst.to_world.point(barycentric_point(g.prototypes[inst.prototype], hit)),
+              unit_or_z(triangle_world_normal(g, hit.shape, hit.prim))};
+    }
+    case ShapeKind::Sphere: return on_sphere(g.spheres[s.index], ray, hit.t);
+  }
+  return {};
+}
+
+template SurfacePoint surface_point<false>(const WorldGeometry&, const Ray&, const Hit&);
+template SurfacePoint surface_point<true>(const WorldGeometry&, const Ray&, const Hit&);
+
+Vec3f triangle_world_normal(const WorldGeometry& g, uint32_t shape, uint32_t prim) {
+  const Shape& s = g.shapes[shape];
+  const TriangleMesh& m = s.kind == ShapeKind::Mesh ? g.meshes[s.index] : g.prototypes[g.instances[s.index].prototype];
+  const Vec3f v0 = m.vertex(prim, 0);
+  const Vec3f n = cross(m.vertex(prim, 1) - v0, m.vertex(prim, 2) - v0);
+  if (s.kind == ShapeKind::Mesh) return n;
+  const Transform& xf = g.instances[s.index].to_world;
+  const Vec3f nw = xf.normal(n);
+  return xf.swaps_handedness() ? -nw : nw;
+}
+
+Vec3f sphere_world_normal(const SphereShape& s, const Ray& ray, float t) {
+  if (s.to_world.is_identity()) return ray.o + ray.d * t - s.center;
+  Vec3f o = ray.o, d = ray.d;
+  to_object_space(s.to_world.inverse(), o, d);
+  return s.to_world.normal(o + d * t - s.center);
+}
+
+}  // namespace kiln
