@@ -48,6 +48,12 @@ bool usable(const std::optional<BsdfSample>& s) {
 
 struct Walk {
   const CoatedDiffuse& m;
+  // Density with which NEE through the coat (sampled from wi) produces the inside direction -w_up, the
+  // competitor of a walk direction w_up heading for the coat (see the header's "Exit weights").
+  float exit_nee_pdf(Vec3f w_up, Vec3f wi) const {
+    if (m.exit_weight == LayeredExitWeight::PbrtV4) return m.coat.pdf(-w_up, wi, Transport::Radiance, kLobeTransmission);
+    return m.coat.pdf(wi, -w_up, Transport::Importance, kLobeTransmission);
+  }
   Rng& rng;
   float next() { return rng.next_float(); }
   Vec2f next_2d() { return rng.next_2d(); }
@@ -69,7 +75,7 @@ float CoatedDiffuse::albedo_estimate() const {
 
 // One estimate of f(wo, wi) per random walk, with next event estimation towards wi through the coat at every
 // base and medium vertex (pbrt-v4's LayeredBxDF::f, specialised to a coat on top of a reflecting base: the walk
-// always enters and leaves through the coat).
+// always enters and leaves through the coat; exit MIS weights as the header explains).
 Rgb CoatedDiffuse::eval(Vec3f wo, Vec3f wi) const {
   if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return Rgb(0.0f);
   const int n = std::max(1, n_samples);
@@ -118,7 +124,7 @@ Rgb CoatedDiffuse::eval(Vec3f wo, Vec3f wi) const {
           if (w.z > 0.0f && !smooth) {
             const float f_exit = coat.f(-w, wi);
             if (f_exit > 0.0f) {
-              const float wt = power_heuristic(ps->pdf, coat.pdf(-w, wi, Transport::Radiance, kLobeTransmission));
+              const float wt = power_heuristic(ps->pdf, walk.exit_nee_pdf(w, wi));
               f += beta * (transmittance(zp - t, ps->wi) * f_exit * wt);
             }
           }
@@ -148,7 +154,7 @@ Rgb CoatedDiffuse::eval(Vec3f wo, Vec3f wi) const {
         if (!smooth) {
           const float f_exit = coat.f(-w, wi);
           if (f_exit > 0.0f) {
-            const float wt = power_heuristic(base_pdf, coat.pdf(-w, wi, Transport::Radiance, kLobeTransmission));
+            const float wt = power_heuristic(base_pdf, walk.exit_nee_pdf(w, wi));
             f += beta * (transmittance(t, w) * f_exit * wt);
           }
         }

@@ -25,6 +25,16 @@
 // estimate (eval) or one fixed positive approximation (pdf) of the true value; perturbing an argument by one ulp
 // draws an independent estimate.
 //
+// Exit weights: with a rough coat, eval() reaches wi from a base or medium vertex by two strategies, combined
+// with the power heuristic: NEE (the coat sampled from wi, in importance mode, gives the inside direction -w
+// with density p_nee = coat.pdf(wi, -w)) and the walk's own next direction w (base cosine or phase function,
+// density p_walk) evaluated through the coat. The weights sum to 1 only if both use the same p_nee and p_walk.
+// pbrt-v4's f() weights the second strategy with coat.pdf(-w, wi) instead, the density of the OUTSIDE direction
+// given w, which differs from p_nee by the refraction Jacobian and eta^2: its f() then overestimates the BSDF,
+// e.g. by 4-8% of the albedo for coats with roughness 0.025-0.15 over reflectance 0.2-0.4 (the killeroo scene),
+// and no longer agrees with its own Sample_f (mmp/pbrt-v4 issue 187 reports that disagreement). Kiln uses the
+// consistent weight; exit_weight = PbrtV4 reproduces pbrt-v4's estimator for side-by-side comparisons.
+//
 // Smooth coat: its mirror reflection R(theta_o) is a delta lobe. As in pbrt-v4 it is returned only by sample(),
 // flagged kLobeSpecular with f = R / cos(theta_i) and pdf = the probability of choosing it (R); eval() and pdf()
 // exclude it (an integrator's NEE never sees it, and it never takes part in MIS). The integrator treats such a
@@ -46,6 +56,12 @@
 
 namespace kiln {
 
+// MIS weight of the walk's exit through a rough coat towards wi (see "Exit weights" above).
+enum class LayeredExitWeight {
+  Consistent,  // both strategies weighted with the same two densities of the inside direction: unbiased
+  PbrtV4,      // pbrt-v4's LayeredBxDF::f: biased high (3-8% for the killeroo's coats), for comparisons with pbrt
+};
+
 struct CoatedDiffuse {
   Rgb reflectance{0.5f};
   RoughDielectric coat{1.5f, TrowbridgeReitz{}};
@@ -54,6 +70,7 @@ struct CoatedDiffuse {
   float g = 0.0f;
   int max_depth = 10;
   int n_samples = 1;
+  LayeredExitWeight exit_weight = LayeredExitWeight::Consistent;
 
   Rgb eval(Vec3f wo, Vec3f wi) const;
   float pdf(Vec3f wo, Vec3f wi) const;
