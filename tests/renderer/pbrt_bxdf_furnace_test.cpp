@@ -66,18 +66,23 @@ TEST(PbrtFurnace, StrategiesAgreeOnRoughMaterials) {
   coat.reflectance = Rgb(0.4f, 0.5f, 0.4f);
   coat.uroughness = coat.vroughness = 0.15f;
   cases.push_back({"killeroo_coat", coat});
+  PbrtMaterialDesc bright = coat;  // the same coat over a bright base: the most light crosses the coat
+  bright.reflectance = Rgb(0.9f);
+  cases.push_back({"bright_coat", bright});
   PbrtMaterialDesc medium = coat;
   medium.thickness = 0.3f;
   medium.albedo = Rgb(0.8f);
   medium.g = 0.4f;
   cases.push_back({"coat_with_medium", medium});
-  constexpr int kDepth = 2;
+  // One bounce: the NEE-only estimate is then eval() alone against sample() alone for BSDF sampling, with the
+  // least variance from the light sampling of later bounces.
+  constexpr int kDepth = 1;
   for (const auto& [name, d] : cases) {
     const SceneDesc scene = pbrt_furnace(d);
     const auto world = build_world(scene, {});
     std::vector<Estimate> est;
     for (const Strategy& st : kStrategies)
-      est.push_back(estimate_mean(*world, strategy(st.nee, st.mis, st.rr, kDepth), scene.cameras[0], 100000, 11));
+      est.push_back(estimate_mean(*world, strategy(st.nee, st.mis, st.rr, kDepth), scene.cameras[0], 200000, 11));
     for (size_t a = 0; a < est.size(); ++a)
       for (size_t b = a + 1; b < est.size(); ++b) {
         const double se = std::hypot(est[a].stderr_, est[b].stderr_);
