@@ -35,6 +35,12 @@ float fresnel_conductor(float cos_theta_o, float eta, float kappa) {
   return std::isfinite(r) ? float(std::clamp(r, 0.0, 1.0)) : 1.0f;
 }
 
+Rgb fresnel_conductor(float cos_theta_o, const RgbComplexIor& ior) {
+  Rgb r;
+  for (int c = 0; c < 3; ++c) r[c] = fresnel_conductor(cos_theta_o, ior.eta[c], ior.k[c]);
+  return r;
+}
+
 float fresnel_r0(float eta, float kappa) {
   const float num = sqr(eta - 1.0f) + kappa * kappa;
   const float den = sqr(eta + 1.0f) + kappa * kappa;
@@ -63,6 +69,23 @@ std::optional<Refraction> refract(Vec3f wo, float eta) {
   const float cos_t = safe_sqrt(1.0f - sin2_t);
   // wt = -wo / etap + (cos_i / etap - cos_t) n, whose normal component simplifies to -cos_t n.
   const Vec3f wt = normalize(Vec3f(-wo.x / etap, -wo.y / etap, -nz * cos_t));
+  return Refraction{wt, etap};
+}
+
+std::optional<Refraction> refract(Vec3f wo, Vec3f n, float eta) {
+  float cos_i = dot(wo, n);
+  float etap = eta;
+  if (cos_i < 0.0f) {  // wo on the inside of the facet
+    etap = 1.0f / eta;
+    cos_i = -cos_i;
+    n = -n;
+  }
+  if (!(cos_i > 0.0f)) return std::nullopt;
+  const float sin2_i = std::max(0.0f, 1.0f - cos_i * cos_i);
+  const float sin2_t = sin2_i / (etap * etap);
+  if (sin2_t >= 1.0f) return std::nullopt;
+  const float cos_t = safe_sqrt(1.0f - sin2_t);
+  const Vec3f wt = normalize(-wo / etap + (cos_i / etap - cos_t) * n);
   return Refraction{wt, etap};
 }
 

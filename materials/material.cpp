@@ -2,7 +2,8 @@
 //
 // Sidedness: surface BRDFs are written for wo.z > 0; the material makes them two-sided by mirroring both
 // directions through the surface plane when wo.z < 0 (so a dielectric's glossy coat also works from inside).
-// Delta parts handle both sides themselves (the dielectric needs the side to know which way it refracts).
+// Surface BSDFs with kHandlesBothSides (RoughDielectric) and delta parts handle both sides themselves (the
+// dielectric needs the side to know which way it refracts).
 //
 // Lobe choice in sample(): the delta part is picked with probability
 //   delta_probability(wo) = a_delta / (a_surface + a_delta)
@@ -15,6 +16,14 @@ namespace kiln {
 namespace {
 
 Vec3f flip_z(Vec3f w) { return {w.x, w.y, -w.z}; }
+
+template <class B>
+constexpr bool handles_both_sides() {
+  if constexpr (requires { B::kHandlesBothSides; })
+    return B::kHandlesBothSides;
+  else
+    return false;
+}
 
 float clamp_unit(float u) { return std::clamp(u, 0.0f, kOneMinusEpsilon); }
 
@@ -51,53 +60,58 @@ int delta_branches_of(const DeltaBsdf& d, Vec3f wo, SpecularBranch out[2]) {
       d);
 }
 
-// Surface BRDF in the hemisphere of wo.
+// Surface BSDF for wo on either side: mirrored into +z unless the BSDF handles both sides itself.
 Rgb surface_eval(const SurfaceBrdf& s, Vec3f wo, Vec3f wi) {
-  if (wo.z < 0.0f) {
-    wo = flip_z(wo);
-    wi = flip_z(wi);
-  }
   return std::visit(
       [&](const auto& b) -> Rgb {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
+        using B = std::decay_t<decltype(b)>;
+        if constexpr (std::is_same_v<B, NoSurface>)
           return Rgb(0.0f);
-        else
+        else if constexpr (handles_both_sides<B>())
           return b.eval(wo, wi);
+        else
+          return wo.z < 0.0f ? b.eval(flip_z(wo), flip_z(wi)) : b.eval(wo, wi);
       },
       s);
 }
 
 float surface_pdf(const SurfaceBrdf& s, Vec3f wo, Vec3f wi) {
-  if (wo.z < 0.0f) {
-    wo = flip_z(wo);
-    wi = flip_z(wi);
-  }
   return std::visit(
       [&](const auto& b) -> float {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
+        using B = std::decay_t<decltype(b)>;
+        if constexpr (std::is_same_v<B, NoSurface>)
           return 0.0f;
-        else
+        else if constexpr (handles_both_sides<B>())
           return b.pdf(wo, wi);
+        else
+          return wo.z < 0.0f ? b.pdf(flip_z(wo), flip_z(wi)) : b.pdf(wo, wi);
       },
       s);
 }
 
 std::optional<BsdfSample> surface_sample(const SurfaceBrdf& s, Vec3f wo, float uc, Vec2f u) {
-  const bool flip = wo.z < 0.0f;
-  if (flip) wo = flip_z(wo);
-  std::optional<BsdfSample> bs = std::visit(
+  return std::visit(
       [&](const auto& b) -> std::optional<BsdfSample> {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
+        using B = std::decay_t<decltype(b)>;
+        if constexpr (std::is_same_v<B, NoSurface>) {
           return std::nullopt;
-        else
+        } else if constexpr (handles_both_sides<B>()) {
           return b.sample(wo, uc, u);
+        } else {
+          if (!(wo.z < 0.0f)) return b.sample(wo, uc, u);
+          std::optional<BsdfSample> bs = b.sample(flip_z(wo), uc, u);
+          if (bs) bs->wi = flip_z(bs->wi);
+          return bs;
+        }
       },
       s);
-  if (bs && flip) bs->wi = flip_z(bs->wi);
-  return bs;
 }
 
-uint32_t surface_flags(const SurfaceBrdf& s) {
+bool surface_handles_both_sides(const SurfaceBrdf& s) {
+  return std::visit([](const auto& b) { return handles_both_sides<std::decay_t<decltype(b)>>(); }, s);
+}
+
+uint32_t surface_part_flags(const SurfaceBrdf& s) {
   return std::visit(
       [](const auto& b) -> uint32_t {
         if constexpr (std::is_same_v<std::decay_t<decltype(b)>, NoSurface>)
@@ -125,7 +139,13 @@ bool valid_sample(const BsdfSample& s) {
 
 }  // namespace
 
-uint32_t Material::flags() const { return surface_flags(surface) | delta_flags(delta); }
+uint32_t Material::flags() const { return surface_part_flags(surface) | delta_flags(delta); }
+
+uint32_t Material::surface_flags() const { return surface_part_flags(surface); }
+
+bool Material::oriented() const {
+  return std::holds_alternative<Dielectric>(delta) || surface_handles_both_sides(surface);
+}
 
 namespace {
 
@@ -143,6 +163,9 @@ std::string name_of(const Lambert&) { return "lambert"; }
 std::string name_of(const Phong& b) { return std::string("phong") + variant_suffix(b.variant); }
 std::string name_of(const BlinnPhong& b) { return std::string("blinn-phong") + variant_suffix(b.variant); }
 std::string name_of(const TorranceSparrow&) { return "torrance-sparrow"; }
+std::string name_of(const RoughConductor&) { return "rough-conductor"; }
+std::string name_of(const RoughDielectric&) { return "rough-dielectric"; }
+std::string name_of(const CoatedDiffuse&) { return "coated-diffuse"; }
 std::string name_of(const NoDelta&) { return ""; }
 std::string name_of(const Mirror&) { return "mirror"; }
 std::string name_of(const Dielectric&) { return "dielectric"; }
@@ -151,6 +174,7 @@ std::string name_of(const Conductor&) { return "conductor"; }
 }  // namespace
 
 std::string Material::describe() const {
+  if (passes_through) return "interface";
   const std::string s = std::visit([](const auto& b) { return name_of(b); }, surface);
   std::string d = std::visit([](const auto& b) { return name_of(b); }, delta);
   if (!d.empty() && roughness > 0.0f) d = "rough-" + d;

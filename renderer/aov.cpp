@@ -11,13 +11,17 @@ namespace kiln {
 namespace {
 
 // Albedo as denoisers expect it: the material's reflectance colour (diffuse + specular for the course BRDFs, the
-// mirror colour for delta materials, white for glass).
+// mirror colour for delta materials, white for glass; pbrt's rough conductor: its normal-incidence Fresnel colour,
+// coated diffuse: its base colour).
 Rgb material_albedo(const Material& m) {
   const Rgb surface = std::visit(
       [](const auto& b) -> Rgb {
         using T = std::decay_t<decltype(b)>;
         if constexpr (std::is_same_v<T, NoSurface>) return Rgb(0.0f);
         else if constexpr (std::is_same_v<T, Lambert>) return b.reflectance;
+        else if constexpr (std::is_same_v<T, RoughConductor>) return fresnel_conductor(1.0f, b.ior);
+        else if constexpr (std::is_same_v<T, RoughDielectric>) return Rgb(1.0f);
+        else if constexpr (std::is_same_v<T, CoatedDiffuse>) return b.reflectance;
         else return b.kd + b.ks;
       },
       m.surface);

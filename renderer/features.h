@@ -18,7 +18,7 @@ enum Feature : uint32_t {
   kFeatureAmbient = 1u << 8,
   kFeatureGlossy = 1u << 9,           // Phong / Blinn-Phong / Torrance-Sparrow lobes
   kFeatureDelta = 1u << 10,           // mirror / dielectric / conductor
-  kFeatureDielectric = 1u << 11,
+  kFeatureDielectric = 1u << 11,     // oriented materials (smooth or rough dielectrics): media are tracked
   kFeatureTextures = 1u << 12,        // parsed but not rendered yet
   kFeatureDepthOfField = 1u << 13,
   kFeatureAll = 0xffffffffu,

@@ -30,6 +30,14 @@ struct DirectionSample {
   float eta = 1.0f;  // relative IOR crossed (transmission)
 };
 
+// The uniform and cosine warps cover the hemisphere of wo: they cannot produce the delta directions a surface lobe
+// may return (the mirror reflection of a smooth coat) nor a rough dielectric's transmission. Such a surface is
+// sampled by its BSDF whatever the strategy, so every strategy still converges to the same image.
+inline DirectionSampling sampling_for(DirectionSampling directions, const Material& m) {
+  if (directions == DirectionSampling::Brdf) return directions;
+  return (m.surface_flags() & (kLobeSpecular | kLobeTransmission)) ? DirectionSampling::Brdf : directions;
+}
+
 // Probability of choosing the delta part; compiled out for scenes without delta materials.
 template <bool kDelta>
 float delta_prob(const Material& m, Vec3f wo_l) {
@@ -41,6 +49,7 @@ float delta_prob(const Material& m, Vec3f wo_l) {
 // followed some other way, so the surface part is sampled alone.
 template <bool kDelta>
 float direction_pdf(DirectionSampling directions, const Material& m, Vec3f wo_l, Vec3f wi_l, bool surface_only) {
+  directions = sampling_for(directions, m);
   const float keep = surface_only ? 1.0f : 1.0f - delta_prob<kDelta>(m, wo_l);
   switch (directions) {
     case DirectionSampling::Brdf:
@@ -60,6 +69,7 @@ std::optional<DirectionSample> sample_direction(DirectionSampling directions, co
   const float uc = sampler.next_float();
   const Vec2f u = sampler.next_2d();
   if (surface_only && !m.has_surface()) return std::nullopt;
+  directions = sampling_for(directions, m);
   if (directions == DirectionSampling::Brdf) {
     auto bs = surface_only ? m.sample_surface(wo_l, uc, u) : m.sample(wo_l, uc, u);
     if (!bs || bs->pdf <= 0.0f) return std::nullopt;

@@ -11,10 +11,11 @@ inline constexpr int kMaxPathVertices = 1024;
 
 inline bool is_dielectric(const Material& m) { return std::holds_alternative<Dielectric>(m.delta); }
 
-// Opaque surfaces are two-sided: normals are flipped to the side the ray arrived from. Dielectrics keep their
-// outward orientation so that the local frame tells inside (wo.z < 0) from outside.
+// Opaque surfaces are two-sided: normals are flipped to the side the ray arrived from. Oriented materials
+// (dielectrics, smooth or rough) keep their outward orientation so that the local frame tells inside (wo.z < 0)
+// from outside.
 inline void orient_normals(SurfaceInteraction& si, Vec3f wo) {
-  if (!is_dielectric(*si.material) && dot(wo, si.ng) < 0.0f) {
+  if (!si.material->oriented() && dot(wo, si.ng) < 0.0f) {
     si.ng = -si.ng;
     si.ns = -si.ns;
   }
@@ -22,7 +23,7 @@ inline void orient_normals(SurfaceInteraction& si, Vec3f wo) {
 
 // True when a ray that arrived along d has travelled inside the closed dielectric it now leaves.
 inline bool exits_dielectric(const SurfaceInteraction& si, Vec3f d) {
-  return si.material && is_dielectric(*si.material) && dot(d, si.ng) > 0.0f;
+  return si.material && si.material->oriented() && dot(d, si.ng) > 0.0f;
 }
 
 // Opaque surfaces only reflect: a light direction below the geometric surface would leak light through it.

@@ -92,14 +92,22 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     w.materials.push_back(build_material(m, scene));
     const Material& built = w.materials.back();
     ++w.stats.compiled_materials[built.describe()];
-    if (std::holds_alternative<Phong>(built.surface) || std::holds_alternative<BlinnPhong>(built.surface) ||
-        std::holds_alternative<TorranceSparrow>(built.surface))
-      w.features |= kFeatureGlossy;
+    if (built.surface_flags() & kLobeGlossy) w.features |= kFeatureGlossy;
     if (built.has_delta()) w.features |= kFeatureDelta;
-    if (std::holds_alternative<Dielectric>(built.delta)) w.features |= kFeatureDielectric;
+    if (built.oriented()) w.features |= kFeatureDielectric;
   }
   w.stats.materials = w.materials.size();
   if (!w.ambient.is_black()) w.features |= kFeatureAmbient;
+
+  // Surfaces whose material only marks a boundary (pbrt's "interface") change no ray: without participating media
+  // they are left out of the geometry, so they neither stop camera rays nor shadow lights.
+  const auto invisible = [&](int material, const std::optional<Rgb>& emission) {
+    const bool emits = emission && !emission->is_black();
+    if (emits || material < 0 || size_t(material) >= w.materials.size() || !w.materials[size_t(material)].passes_through)
+      return false;
+    ++w.stats.interface_shapes;
+    return true;
+  };
 
   WorldGeometry& g = w.geometry;
   // Meshes: world-space copies for the scene, object-space prototypes for instanced bases.
@@ -112,6 +120,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     }
     if (!m.visible || m.indices.empty()) continue;
     check_material(scene, m.material, m.name, m.emission.has_value());
+    if (invisible(m.material, m.emission)) continue;
     // Instance bases stay in the description: their prototype copy above was taken from it.
     MeshDesc* take = consumable && !m.is_instance_base ? &consumable->meshes[i] : nullptr;
     TriangleMesh tm = take ? TriangleMesh{take_transformed_points(take->positions, m.to_world),
@@ -150,6 +159,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   }
   for (const SphereDesc& s : scene.spheres) {
     check_material(scene, s.material, s.name, s.emission.has_value());
+    if (invisible(s.material, s.emission)) continue;
     ShapeData sd;
     sd.material = s.material;
     const bool emits = s.emission && !s.emission->is_black();
@@ -179,6 +189,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     ShapeData sd;
     sd.material = inst.material >= 0 ? inst.material : base.material;
     check_material(scene, sd.material, inst.name, false);
+    if (invisible(sd.material, std::nullopt)) continue;
     sd.smooth = inst.smooth.value_or(base.smooth || !base.normals.empty());
     if (sd.smooth) {
       int& pn = prototype_normals[size_t(proto)];

@@ -30,6 +30,7 @@ struct WorldStats {
          sphere_lights = 0;
   size_t materials = 0;
   std::map<std::string, size_t> compiled_materials;  // Material::describe() -> how many materials compiled to it
+  size_t interface_shapes = 0;  // shapes left out because their material only marks a boundary (pbrt "interface")
   bool sphere_geometry_built = false;
   bool cone_sampler_built = false;  // sphere/ellipsoid lights present
   bool light_selector_built = false;

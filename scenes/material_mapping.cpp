@@ -83,6 +83,118 @@ SurfaceBrdf build_surface(const MaterialDesc& m, const SceneDesc& scene, const C
   return NoSurface{};
 }
 
+// ---- pbrt-v4 materials (MaterialDesc::pbrt) ----
+
+const char* pbrt_kind_name(PbrtMaterialKind k) {
+  switch (k) {
+    case PbrtMaterialKind::Diffuse:
+      return "diffuse";
+    case PbrtMaterialKind::Conductor:
+      return "conductor";
+    case PbrtMaterialKind::Dielectric:
+      return "dielectric";
+    case PbrtMaterialKind::CoatedDiffuse:
+      return "coateddiffuse";
+    case PbrtMaterialKind::Interface:
+      return "interface";
+  }
+  return "?";
+}
+
+class PbrtContext {
+ public:
+  PbrtContext(const Context& ctx, const PbrtMaterialDesc& d) : ctx_(ctx), d_(d) {}
+  [[noreturn]] void fail(const std::string& what) const {
+    ctx_.fail(std::string("pbrt ") + pbrt_kind_name(d_.kind) + " material: " + what);
+  }
+  // Finite and non-negative, then clamped to [0, hi] as pbrt-v4 clamps albedo-like spectra.
+  Rgb albedo_like(Rgb c, const char* name, float hi = 1.0f) const {
+    if (!c.is_finite() || c.has_negative()) fail(std::string(name) + " must be finite and non-negative");
+    for (int i = 0; i < 3; ++i) c[i] = std::min(c[i], hi);
+    return c;
+  }
+  float non_negative(float v, const char* name) const {
+    if (!std::isfinite(v) || v < 0.0f) fail(std::string(name) + " must be a non-negative number, got " + std::to_string(v));
+    return v;
+  }
+  float positive(float v, const char* name) const {
+    if (!std::isfinite(v) || !(v > 0.0f)) fail(std::string(name) + " must be a positive number, got " + std::to_string(v));
+    return v;
+  }
+  TrowbridgeReitz distribution() const {
+    const float u = non_negative(d_.uroughness, "uroughness"), v = non_negative(d_.vroughness, "vroughness");
+    if (!d_.remap_roughness) return TrowbridgeReitz(u, v);
+    return TrowbridgeReitz(TrowbridgeReitz::roughness_to_alpha(u), TrowbridgeReitz::roughness_to_alpha(v));
+  }
+  RgbComplexIor conductor_ior() const {
+    if (d_.conductor_reflectance) {
+      // pbrt-v4: eta = 1 and k = 2 sqrt(r) / sqrt(1 - r), whose normal-incidence reflectance is exactly r.
+      const Rgb r = albedo_like(*d_.conductor_reflectance, "reflectance", kMaxPbrtConductorReflectance);
+      Rgb k;
+      for (int i = 0; i < 3; ++i) k[i] = 2.0f * std::sqrt(r[i]) / std::sqrt(1.0f - r[i]);
+      return {Rgb(1.0f), k};
+    }
+    const Rgb eta = d_.conductor_eta, k = d_.conductor_k;
+    if (!eta.is_finite() || eta.has_negative()) fail("eta must be finite and non-negative");
+    if (!k.is_finite() || k.has_negative()) fail("k must be finite and non-negative");
+    return {eta, k};
+  }
+
+ private:
+  const Context& ctx_;
+  const PbrtMaterialDesc& d_;
+};
+
+Material build_pbrt_material(const PbrtMaterialDesc& d, const Context& ctx) {
+  const PbrtContext p(ctx, d);
+  Material out;
+  switch (d.kind) {
+    case PbrtMaterialKind::Diffuse:
+      out.surface = Lambert{p.albedo_like(d.reflectance, "reflectance")};
+      break;
+    case PbrtMaterialKind::Conductor: {
+      const TrowbridgeReitz tr = p.distribution();
+      const RgbComplexIor ior = p.conductor_ior();
+      if (tr.effectively_smooth())
+        out.delta = Conductor{Rgb(1.0f), 1.0f, 0.0f, ior};
+      else
+        out.surface = RoughConductor{tr, ior};
+      break;
+    }
+    case PbrtMaterialKind::Dielectric: {
+      const TrowbridgeReitz tr = p.distribution();
+      const float eta = p.positive(d.eta, "eta");
+      // eta = 1 is no interface at all (pbrt treats it as a specular pass-through, rough or not).
+      if (eta == 1.0f || tr.effectively_smooth())
+        out.delta = Dielectric{eta};
+      else
+        out.surface = RoughDielectric{eta, tr};
+      break;
+    }
+    case PbrtMaterialKind::CoatedDiffuse: {
+      if (!std::isfinite(d.g) || !(std::abs(d.g) < 1.0f))
+        p.fail("g must lie strictly between -1 and 1, got " + std::to_string(d.g));
+      if (d.max_depth < 0 || d.max_depth > kMaxPbrtLayeredDepth)
+        p.fail("maxdepth must be in [0, " + std::to_string(kMaxPbrtLayeredDepth) + "], got " + std::to_string(d.max_depth));
+      if (d.n_samples < 1 || d.n_samples > kMaxPbrtLayeredSamples)
+        p.fail("nsamples must be in [1, " + std::to_string(kMaxPbrtLayeredSamples) + "], got " + std::to_string(d.n_samples));
+      out.surface = CoatedDiffuse{p.albedo_like(d.reflectance, "reflectance"),
+                                  RoughDielectric{p.positive(d.eta, "eta"), p.distribution()},
+                                  p.non_negative(d.thickness, "thickness"),
+                                  p.albedo_like(d.albedo, "albedo"),
+                                  d.g,
+                                  d.max_depth,
+                                  d.n_samples};
+      break;
+    }
+    case PbrtMaterialKind::Interface:
+      out.passes_through = true;
+      out.delta = Dielectric{1.0f};
+      break;
+  }
+  return out;
+}
+
 // Per-unit-length transmittance a -> Beer-Lambert coefficient -ln(a).
 Rgb absorption_from_transparency(Rgb a) {
   Rgb c;
@@ -94,6 +206,7 @@ Rgb absorption_from_transparency(Rgb a) {
 
 Material build_material(const MaterialDesc& m, const SceneDesc& scene) {
   const Context ctx(m, scene);
+  if (m.pbrt) return build_pbrt_material(*m.pbrt, ctx);
   ctx.check_colour(m.ambient, "AmbientReflectance");
   ctx.check_colour(m.diffuse, "DiffuseReflectance");
   ctx.check_colour(m.specular, "SpecularReflectance");

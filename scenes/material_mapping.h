@@ -28,6 +28,20 @@
 // diffuse = color; "specular" -> type Mirror, mirror = color; "translucent" -> type Dielectric with
 // refraction_index = 1.5 and has_refraction_index = true (no IOR key exists; 1.5 is glass).
 //
+// pbrt-v4 materials (MaterialDesc::pbrt set; the course fields are then ignored):
+//   * diffuse        -> Lambert(reflectance clamped to [0, 1])
+//   * conductor      -> alpha = sqrt(roughness) per axis (u along the frame's x = pbrt's dpdu; remaproughness
+//                       false: alpha = roughness); effectively smooth (both alphas < 1e-3) -> delta Conductor with
+//                       the RGB eta + i k, else RoughConductor. "reflectance" r (clamped to [0, 0.9999]) replaces
+//                       eta / k by eta = 1, k = 2 sqrt(r) / sqrt(1 - r).
+//   * dielectric     -> eta = 1 or effectively smooth: delta Dielectric(eta); else RoughDielectric (reflection and
+//                       transmission in the surface part; the material is oriented()).
+//   * coateddiffuse  -> CoatedDiffuse (reflectance and albedo clamped to [0, 1]; its smooth coat's mirror
+//                       reflection comes from sample() as a specular sample).
+//   * interface      -> passes_through, with a Dielectric(1) pass-through delta for integrators that ignore it.
+// Bad pbrt values (negative or non-finite roughness, thickness, colours; eta <= 0; |g| >= 1; maxdepth or
+// nsamples out of range) throw kiln::Error naming the file, "Material id=N" and the pbrt material type.
+//
 // Bad input (dangling BRDF index, negative exponent, missing or non-positive refraction index where one is
 // needed, negative or non-finite colours) throws kiln::Error naming the scene file and "Material id=N".
 #pragma once
@@ -39,6 +53,12 @@ namespace kiln {
 // Transparency values below this are treated as this (absorption -ln(1e-6) ~ 13.8 per unit length), keeping the
 // absorption coefficient finite so that transmittance(0) is 1 and never NaN.
 inline constexpr float kMinTransparency = 1e-6f;
+// pbrt-v4 clamps a conductor's "reflectance" below 1 (k = 2 sqrt(r) / sqrt(1 - r) is infinite at 1).
+inline constexpr float kMaxPbrtConductorReflectance = 0.9999f;
+// Limits on coateddiffuse's random walks: every eval() runs nsamples walks of up to maxdepth events, so larger
+// values would stall a render rather than change it.
+inline constexpr int kMaxPbrtLayeredDepth = 10000;
+inline constexpr int kMaxPbrtLayeredSamples = 1024;
 // Exponent applied by degamma="true".
 inline constexpr float kDegammaExponent = 2.2f;
 

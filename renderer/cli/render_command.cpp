@@ -41,6 +41,7 @@ nlohmann::json world_stats_json(const World& w) {
           {"triangles", s.triangles},
           {"spheres", s.spheres},
           {"instances", s.instances},
+          {"interface_shapes_left_out", s.interface_shapes},
           {"materials", s.materials},
           {"compiled_materials", s.compiled_materials},
           {"lights",

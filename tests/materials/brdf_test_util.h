@@ -60,6 +60,26 @@ inline AlbedoEstimate estimate_albedo(const Material& m, Vec3f wo, int n, uint64
   return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
 }
 
+// ∫ f(w) dw over the upper hemisphere in (theta, phi), double precision: Simpson in theta, midpoint in phi
+// (periodic, so spectrally accurate). Resolves lobes far narrower than integrate_sphere's cos-phi grid.
+template <class F>
+double integrate_upper_hemisphere(F&& f, int n_theta = 4000, int n_phi = 256) {
+  constexpr double kPiD = 3.14159265358979323846;
+  const double h = (kPiD / 2) / n_theta, dp = 2 * kPiD / n_phi;
+  double total = 0;
+  for (int i = 0; i <= n_theta; ++i) {
+    const double th = i * h;
+    const double wt = (i == 0 || i == n_theta) ? 1 : (i % 2 ? 4 : 2);
+    double ring = 0;
+    for (int j = 0; j < n_phi; ++j) {
+      const double ph = (j + 0.5) * dp;
+      ring += f(Vec3f(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)), float(std::cos(th))));
+    }
+    total += wt * ring * dp * std::sin(th);
+  }
+  return total * h / 3;
+}
+
 // Simpson's rule on [a, b] with n (even) intervals, double precision.
 template <class F>
 double simpson(F&& f, double a, double b, int n = 20000) {
