@@ -555,7 +555,7 @@ class PbrtParser {
     PbrtParams ps = read_params(cur, line, "Integrator " + in_quotes(type));
     require_options(line, "Integrator");
     if (type != "path" && type != "volpath") {
-      warn(line, "Integrator", "integrator " + in_quotes(type) + " is rendered with Kiln's path tracer (MIS, roulette)");
+      diag_.warn(ps, "integrator " + in_quotes(type) + " is rendered with Kiln's path tracer (MIS, roulette)");
       diag_.unsupported("pbrt integrator " + in_quotes(type) + " (Kiln's path tracer renders it)");
     }
     const int depth = ps.get_int("maxdepth", kPbrtDefaultMaxDepth);
