@@ -50,8 +50,6 @@ float InfiniteLight::pdf_li(const LightQuery& q, Vec3f p_light, Vec3f, uint32_t)
   return len > 0.0f ? pdf_direction(q, d / len) : 0.0f;
 }
 
-float InfiniteLight::power() const {
-  return 4.0f * kPi * kPi * scene_radius_ * scene_radius_ * radiance_.luminance();
-}
+float InfiniteLight::power() const { return 4.0f * kPi * kPi * scene_radius_ * scene_radius_ * radiance_.luminance(); }
 
 }  // namespace kiln

@@ -145,9 +145,10 @@ CameraDesc make_pbrt_camera(const PbrtCameraInput& in, PbrtDiagnostics& diag) {
   c.gaze = fwd / sf;
   c.up = up / su;
   c.left_handed = dot(right, cross(up, fwd)) > 0.0f;
-  const bool rigid = std::abs(dot(right / sr, c.up)) < kRigidTolerance && std::abs(dot(right / sr, c.gaze)) <
-                     kRigidTolerance && std::abs(dot(c.up, c.gaze)) < kRigidTolerance &&
-                     std::abs(sr - sf) <= kRigidTolerance * sf && std::abs(su - sf) <= kRigidTolerance * sf;
+  const bool rigid = std::abs(dot(right / sr, c.up)) < kRigidTolerance &&
+                     std::abs(dot(right / sr, c.gaze)) < kRigidTolerance &&
+                     std::abs(dot(c.up, c.gaze)) < kRigidTolerance && std::abs(sr - sf) <= kRigidTolerance * sf &&
+                     std::abs(su - sf) <= kRigidTolerance * sf;
   if (!rigid)
     diag.warn(cam, "the camera transform shears or scales unevenly; Kiln keeps only its position and orientation");
 

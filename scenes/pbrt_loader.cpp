@@ -65,14 +65,14 @@ struct ObjectDef {
 struct TextureDef {
   bool is_float = false;
   std::string cls;
-  std::optional<float> value;    // constant float texture
-  std::optional<Rgb> rgb;        // constant spectrum texture
+  std::optional<float> value;  // constant float texture
+  std::optional<Rgb> rgb;      // constant spectrum texture
 };
 
 struct OpenFile {
   std::unique_ptr<PbrtCursor> cursor;
   std::string dir;
-  int included_at = 0;          // line of the Include / Import in the parent file
+  int included_at = 0;                  // line of the Include / Import in the parent file
   std::optional<size_t> import_blocks;  // Import: the block depth to return to when the file ends
 };
 
@@ -131,8 +131,9 @@ class PbrtParser {
   void push_file(std::string text, const std::string& path, const std::string& dir, int included_at,
                  std::optional<size_t> import_blocks) {
     if (files_.size() >= size_t(kPbrtMaxIncludeDepth))
-      fail(included_at, "Include", "includes nest deeper than " + std::to_string(kPbrtMaxIncludeDepth) +
-                                       " files (does a file include itself?)");
+      fail(
+          included_at, "Include",
+          "includes nest deeper than " + std::to_string(kPbrtMaxIncludeDepth) + " files (does a file include itself?)");
     OpenFile f;
     f.cursor = std::make_unique<PbrtCursor>(PbrtTokenizer(std::move(text), path));
     f.dir = dir;
@@ -150,8 +151,7 @@ class PbrtParser {
         continue;
       }
       update_trace();
-      if (t->kind != PbrtTokenKind::Word)
-        fail(t->line, "", "expected a directive, got " + pbrt_describe(*t));
+      if (t->kind != PbrtTokenKind::Word) fail(t->line, "", "expected a directive, got " + pbrt_describe(*t));
       directive(cur, *t);
     }
   }
@@ -170,7 +170,8 @@ class PbrtParser {
     if (f.import_blocks) {
       // The imported file's attribute changes end with it.
       while (blocks_.size() > *f.import_blocks + 1) {
-        diag_.warn(f.cursor->file(), blocks_.back().line, "AttributeBegin", "is not closed by the end of the imported file");
+        diag_.warn(f.cursor->file(), blocks_.back().line, "AttributeBegin",
+                   "is not closed by the end of the imported file");
         gs_ = blocks_.back().saved;
         blocks_.pop_back();
       }
@@ -244,8 +245,9 @@ class PbrtParser {
     if (fs::is_regular_file(local, ec)) return local.lexically_normal().string();
     const fs::path from_root = fs::path(root_dir_) / p;
     if (fs::is_regular_file(from_root, ec)) return from_root.lexically_normal().string();
-    fail(line, context, "cannot find " + in_quotes(name) + " (looked for " + local.lexically_normal().string() +
-                            (local == from_root ? "" : " and " + from_root.lexically_normal().string()) + ")");
+    fail(line, context,
+         "cannot find " + in_quotes(name) + " (looked for " + local.lexically_normal().string() +
+             (local == from_root ? "" : " and " + from_root.lexically_normal().string()) + ")");
   }
 
   // ---- directives ----
@@ -295,16 +297,21 @@ class PbrtParser {
     if (d == "CoordSysTransform") {
       const std::string name = read_string(cur, line, d);
       const auto it = coord_systems_.find(name);
-      if (it == coord_systems_.end()) return warn(line, d, "no coordinate system named " + in_quotes(name) + "; ignored");
+      if (it == coord_systems_.end())
+        return warn(line, d, "no coordinate system named " + in_quotes(name) + "; ignored");
       gs_.ctm = it->second;
       return;
     }
     if (d == "ActiveTransform") {
       const PbrtToken a = next_token(cur, line, d);
-      if (a.is_word("All")) active_ = {true, true};
-      else if (a.is_word("StartTime")) active_ = {true, false};
-      else if (a.is_word("EndTime")) active_ = {false, true};
-      else fail(a.line, d, "expected All, StartTime or EndTime, got " + pbrt_describe(a));
+      if (a.is_word("All"))
+        active_ = {true, true};
+      else if (a.is_word("StartTime"))
+        active_ = {true, false};
+      else if (a.is_word("EndTime"))
+        active_ = {false, true};
+      else
+        fail(a.line, d, "expected All, StartTime or EndTime, got " + pbrt_describe(a));
       return;
     }
     if (d == "TransformTimes") {
@@ -407,17 +414,18 @@ class PbrtParser {
     if (world_) fail(line, d, d + " after WorldBegin: rendering options must come before the world block");
   }
 
-  void attribute_begin(int line, BlockKind kind) {
-    blocks_.push_back(Block{gs_, kind, file(), line});
-  }
+  void attribute_begin(int line, BlockKind kind) { blocks_.push_back(Block{gs_, kind, file(), line}); }
 
   void attribute_end(int line, BlockKind kind, const std::string& d) {
-    const bool import_floor = !files_.empty() && files_.back().import_blocks && blocks_.size() <= *files_.back().import_blocks + 1;
-    if (blocks_.empty() || import_floor) fail(line, d, d + " without a matching " + (kind == BlockKind::Object ? "ObjectBegin" : "AttributeBegin"));
+    const bool import_floor =
+        !files_.empty() && files_.back().import_blocks && blocks_.size() <= *files_.back().import_blocks + 1;
+    if (blocks_.empty() || import_floor)
+      fail(line, d, d + " without a matching " + (kind == BlockKind::Object ? "ObjectBegin" : "AttributeBegin"));
     const Block& b = blocks_.back();
     if (b.kind != kind)
-      fail(line, d, d + " closes the " + (b.kind == BlockKind::Object ? "ObjectBegin" : "AttributeBegin") +
-                        " of " + b.file + ": line " + std::to_string(b.line));
+      fail(line, d,
+           d + " closes the " + (b.kind == BlockKind::Object ? "ObjectBegin" : "AttributeBegin") + " of " + b.file +
+               ": line " + std::to_string(b.line));
     gs_ = b.saved;
     blocks_.pop_back();
   }
@@ -426,10 +434,14 @@ class PbrtParser {
     const std::string target = read_string(cur, line, "Attribute");
     PbrtParams ps = read_params(cur, line, "Attribute " + in_quotes(target));
     std::shared_ptr<const PbrtParams>* slot = nullptr;
-    if (target == "shape") slot = &gs_.defaults.shape;
-    else if (target == "light") slot = &gs_.defaults.light;
-    else if (target == "material") slot = &gs_.defaults.material;
-    else if (target == "texture") slot = &gs_.defaults.texture;
+    if (target == "shape")
+      slot = &gs_.defaults.shape;
+    else if (target == "light")
+      slot = &gs_.defaults.light;
+    else if (target == "material")
+      slot = &gs_.defaults.material;
+    else if (target == "texture")
+      slot = &gs_.defaults.texture;
     else if (target == "medium") {
       for (const PbrtParam& p : ps.params()) p.used = true;
       return warn(line, "Attribute", "participating media are not rendered; ignored");
@@ -587,7 +599,8 @@ class PbrtParser {
   void finish() {
     const std::string end = "line " + std::to_string(root_end_line_);
     if (current_object_)
-      throw Error(root_path_, end, "the file ends inside ObjectBegin " + in_quotes(*current_object_) + " (no ObjectEnd)");
+      throw Error(root_path_, end,
+                  "the file ends inside ObjectBegin " + in_quotes(*current_object_) + " (no ObjectEnd)");
     if (!world_)
       throw Error(root_path_, end, "missing WorldBegin: the file ends before the world block (no shapes or lights)");
     for (const Block& b : blocks_)
@@ -634,7 +647,8 @@ class PbrtParser {
     sp.to_world = to_world;
     if (light) {
       if (flipped) {
-        warn(line, ps.context(), "a sphere light facing inwards (ReverseOrientation) is not supported; it does not emit");
+        warn(line, ps.context(),
+             "a sphere light facing inwards (ReverseOrientation) is not supported; it does not emit");
         diag_.unsupported("inward-facing sphere lights");
       } else {
         sp.emission = light->radiance;
@@ -642,8 +656,10 @@ class PbrtParser {
           warn(line, ps.context(), "a two-sided sphere light emits only outwards in Kiln (its inside is dark)");
       }
     }
-    if (current_object_) objects_[*current_object_].spheres.push_back(sp);
-    else scene_.spheres.push_back(sp);
+    if (current_object_)
+      objects_[*current_object_].spheres.push_back(sp);
+    else
+      scene_.spheres.push_back(sp);
   }
 
   // pbrt's emitting (and refracting) side: the side of the shading normals "N" when the mesh has them (negated by
@@ -669,9 +685,11 @@ class PbrtParser {
 
   void object_instance(const std::string& name, int line) {
     require_world(line, "ObjectInstance");
-    if (current_object_) fail(line, "ObjectInstance", "ObjectInstance inside the definition of object " + in_quotes(*current_object_));
+    if (current_object_)
+      fail(line, "ObjectInstance", "ObjectInstance inside the definition of object " + in_quotes(*current_object_));
     const auto it = objects_.find(name);
-    if (it == objects_.end()) fail(line, "ObjectInstance", "no object named " + in_quotes(name) + " (ObjectBegin defines them)");
+    if (it == objects_.end())
+      fail(line, "ObjectInstance", "no object named " + in_quotes(name) + " (ObjectBegin defines them)");
     if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "ObjectInstance");
     const Transform& placement = gs_.ctm[0];
     const std::string label = "ObjectInstance " + in_quotes(name) + " (" + fs::path(file()).filename().string() + ":" +
@@ -683,7 +701,8 @@ class PbrtParser {
       inst.name = label;
       inst.base_mesh = mi;
       inst.to_world = placement * base.to_world;
-      if (!finite_transform(inst.to_world)) fail(line, "ObjectInstance", "the instance transform overflows single precision");
+      if (!finite_transform(inst.to_world))
+        fail(line, "ObjectInstance", "the instance transform overflows single precision");
       inst.material = base.material;
       scene_.instances.push_back(inst);
     }
@@ -749,7 +768,8 @@ class PbrtParser {
     return it->second;
   }
 
-  void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex, const TextureDef& t) {
+  void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex,
+                            const TextureDef& t) {
     diag_.warn(ps, in_quotes(param) + " uses texture " + in_quotes(tex) + " (" + in_quotes(t.cls) +
                        (t.is_float ? ", float" : ", spectrum") + "), which Kiln does not render; the default is used");
     diag_.unsupported("textures");
@@ -767,12 +787,15 @@ class PbrtParser {
     t.is_float = type == "float";
     t.cls = cls;
     if (cls == "constant") {
-      if (t.is_float) t.value = ps.get_float("value", 1.0f);
-      else t.rgb = ps.find_spectrum("value", SpectrumUse::Unbounded).value_or(Rgb(1.0f));
+      if (t.is_float)
+        t.value = ps.get_float("value", 1.0f);
+      else
+        t.rgb = ps.find_spectrum("value", SpectrumUse::Unbounded).value_or(Rgb(1.0f));
       diag_.report_unused(ps);
     } else {
       for (const PbrtParam& p : ps.params()) p.used = true;
-      warn(line, ps.context(), "texture class " + in_quotes(cls) + " is not rendered; parameters that use it keep their defaults");
+      warn(line, ps.context(),
+           "texture class " + in_quotes(cls) + " is not rendered; parameters that use it keep their defaults");
       diag_.unsupported("textures");
     }
     textures_[name] = t;
@@ -892,7 +915,8 @@ class PbrtParser {
     } else if (type == "spot") {
       const float cone = ps.get_float("coneangle", kDefaultSpotConeAngle);
       const float delta = ps.get_float("conedeltaangle", kDefaultSpotConeDelta);
-      if (!(cone > 0.0f) || cone > 180.0f || delta < 0.0f) ps.fail(line, "\"coneangle\" must lie in (0, 180] and \"conedeltaangle\" must not be negative");
+      if (!(cone > 0.0f) || cone > 180.0f || delta < 0.0f)
+        ps.fail(line, "\"coneangle\" must lie in (0, 180] and \"conedeltaangle\" must not be negative");
       const float inner = std::max(0.0f, cone - delta);
       float s = scale;
       if (const float power = ps.get_float("power", -1.0f); power > 0.0f) {

@@ -16,12 +16,12 @@ struct TypeName {
 };
 // pbrt-v4's spellings, then the pbrt-v3 ones it still reads.
 constexpr TypeName kTypeNames[] = {
-    {"integer", PbrtType::Integer}, {"float", PbrtType::Float},       {"point2", PbrtType::Point2},
-    {"vector2", PbrtType::Vector2}, {"point3", PbrtType::Point3},     {"vector3", PbrtType::Vector3},
-    {"normal", PbrtType::Normal},   {"normal3", PbrtType::Normal},    {"rgb", PbrtType::Rgb},
+    {"integer", PbrtType::Integer},   {"float", PbrtType::Float},         {"point2", PbrtType::Point2},
+    {"vector2", PbrtType::Vector2},   {"point3", PbrtType::Point3},       {"vector3", PbrtType::Vector3},
+    {"normal", PbrtType::Normal},     {"normal3", PbrtType::Normal},      {"rgb", PbrtType::Rgb},
     {"spectrum", PbrtType::Spectrum}, {"blackbody", PbrtType::Blackbody}, {"bool", PbrtType::Bool},
-    {"string", PbrtType::String},   {"texture", PbrtType::Texture},   {"point", PbrtType::Point3},
-    {"vector", PbrtType::Vector3},  {"color", PbrtType::Rgb},
+    {"string", PbrtType::String},     {"texture", PbrtType::Texture},     {"point", PbrtType::Point3},
+    {"vector", PbrtType::Vector3},    {"color", PbrtType::Rgb},
 };
 
 std::optional<PbrtType> type_from_name(std::string_view s) {
@@ -34,15 +34,12 @@ std::optional<PbrtType> type_from_name(std::string_view s) {
 size_t arity(PbrtType t) {
   switch (t) {
     case PbrtType::Point2:
-    case PbrtType::Vector2:
-      return 2;
+    case PbrtType::Vector2: return 2;
     case PbrtType::Point3:
     case PbrtType::Vector3:
     case PbrtType::Normal:
-    case PbrtType::Rgb:
-      return 3;
-    default:
-      return 1;
+    case PbrtType::Rgb: return 3;
+    default: return 1;
   }
 }
 
@@ -164,8 +161,7 @@ void PbrtParams::parse(PbrtCursor& cursor) {
           }
           if (!p.strings.empty()) fail(v.line, what + ": mixes a name and numbers");
           break;
-        default:
-          break;
+        default: break;
       }
       const auto f = is_string ? std::nullopt : to_float(v.text);
       if (!f) fail(v.line, what + ": expected a finite number, got " + pbrt_describe(v));
@@ -295,8 +291,8 @@ std::vector<Vec2f> PbrtParams::get_point2s(std::string_view name) const {
   const PbrtParam* p = find(name, {PbrtType::Point2, PbrtType::Float}, "point2");
   if (!p) return {};
   if (p->floats.size() % 2 != 0)
-    fail(p->line, "parameter " + in_quotes(name) + " has " + std::to_string(p->floats.size()) +
-                      " values, not a multiple of 2");
+    fail(p->line,
+         "parameter " + in_quotes(name) + " has " + std::to_string(p->floats.size()) + " values, not a multiple of 2");
   std::vector<Vec2f> out(p->floats.size() / 2);
   for (size_t i = 0; i < out.size(); ++i) out[i] = {p->floats[2 * i], p->floats[2 * i + 1]};
   return out;
@@ -314,8 +310,8 @@ std::optional<std::string> PbrtParams::find_texture(std::string_view name) const
 }
 
 std::optional<Rgb> PbrtParams::find_spectrum(std::string_view name, SpectrumUse use) const {
-  const PbrtParam* p =
-      find(name, {PbrtType::Rgb, PbrtType::Spectrum, PbrtType::Blackbody, PbrtType::Texture}, "rgb, spectrum or blackbody");
+  const PbrtParam* p = find(name, {PbrtType::Rgb, PbrtType::Spectrum, PbrtType::Blackbody, PbrtType::Texture},
+                            "rgb, spectrum or blackbody");
   if (!p || p->type == PbrtType::Texture) return std::nullopt;
   const std::string what = "parameter " + in_quotes(name);
   switch (p->type) {
@@ -328,13 +324,13 @@ std::optional<Rgb> PbrtParams::find_spectrum(std::string_view name, SpectrumUse 
       return c;
     }
     case PbrtType::Blackbody: {
-      if (p->floats.size() != 1) fail(p->line, what + " takes one temperature (kelvin), got " + std::to_string(p->count()));
+      if (p->floats.size() != 1)
+        fail(p->line, what + " takes one temperature (kelvin), got " + std::to_string(p->count()));
       const auto c = blackbody_rgb(p->floats[0]);
       if (!c) fail(p->line, what + ": the temperature must be positive");
       return *c;
     }
-    default:
-      break;
+    default: break;
   }
   std::vector<float> pairs;
   if (!p->strings.empty()) {
@@ -373,9 +369,9 @@ std::vector<std::string> PbrtParams::unused_messages() const {
   std::vector<std::string> out;
   for (const PbrtParam& p : params_)
     if (!p.used)
-      out.push_back(Error::format(file_, location(p.line),
-                                  "parameter \"" + std::string(pbrt_type_name(p.type)) + " " + p.name +
-                                      "\" is not used by Kiln; ignored"));
+      out.push_back(Error::format(
+          file_, location(p.line),
+          "parameter \"" + std::string(pbrt_type_name(p.type)) + " " + p.name + "\" is not used by Kiln; ignored"));
   return out;
 }
 

@@ -25,7 +25,19 @@
 namespace kiln {
 
 enum class PbrtType : uint8_t {
-  Integer, Float, Point2, Vector2, Point3, Vector3, Normal, Rgb, Spectrum, Blackbody, Bool, String, Texture
+  Integer,
+  Float,
+  Point2,
+  Vector2,
+  Point3,
+  Vector3,
+  Normal,
+  Rgb,
+  Spectrum,
+  Blackbody,
+  Bool,
+  String,
+  Texture
 };
 const char* pbrt_type_name(PbrtType t);
 

@@ -77,8 +77,8 @@ MeshDesc bilinear_mesh(const PbrtParams& ps, const std::string& name, PbrtDiagno
   MeshDesc m;
   m.name = name;
   m.positions = required_points(ps);
-  const std::vector<uint32_t> quads = checked_indices(ps, indices_or_single(ps, m.positions.size(), 4, "patch"),
-                                                      m.positions.size(), 4, "4 per patch");
+  const std::vector<uint32_t> quads =
+      checked_indices(ps, indices_or_single(ps, m.positions.size(), 4, "patch"), m.positions.size(), 4, "4 per patch");
   m.normals = ps.get_normals("N");
   m.uvs = ps.get_point2s("uv");
   check_vertex_data(ps, m);
@@ -152,11 +152,16 @@ SphereDesc sphere(const PbrtParams& ps, const std::string& name, PbrtDiagnostics
 PbrtShape make_pbrt_shape(const std::string& type, const PbrtParams& ps, const PbrtShapeContext& ctx) {
   const std::string name = shape_name(type, ps);
   PbrtShape out;
-  if (type == "trianglemesh") out.mesh = triangle_mesh(ps, name);
-  else if (type == "plymesh") out.mesh = ply_mesh(ps, name, ctx);
-  else if (type == "loopsubdiv") out.mesh = loop_mesh(ps, name);
-  else if (type == "bilinearmesh") out.mesh = bilinear_mesh(ps, name, ctx.diagnostics);
-  else if (type == "sphere") out.sphere = sphere(ps, name, ctx.diagnostics);
+  if (type == "trianglemesh")
+    out.mesh = triangle_mesh(ps, name);
+  else if (type == "plymesh")
+    out.mesh = ply_mesh(ps, name, ctx);
+  else if (type == "loopsubdiv")
+    out.mesh = loop_mesh(ps, name);
+  else if (type == "bilinearmesh")
+    out.mesh = bilinear_mesh(ps, name, ctx.diagnostics);
+  else if (type == "sphere")
+    out.sphere = sphere(ps, name, ctx.diagnostics);
   else {
     ctx.diagnostics.warn(ps, "shape \"" + type + "\" is not supported; skipped");
     ctx.diagnostics.unsupported("pbrt shape \"" + type + "\"");

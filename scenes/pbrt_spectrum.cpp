@@ -97,9 +97,7 @@ Rgb xyz_to_linear_srgb(Vec3f c) {
           0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
 }
 
-Rgb chromaticity_to_linear_srgb(float x, float y) {
-  return xyz_to_linear_srgb({x / y, 1.0f, (1.0f - x - y) / y});
-}
+Rgb chromaticity_to_linear_srgb(float x, float y) { return xyz_to_linear_srgb({x / y, 1.0f, (1.0f - x - y) / y}); }
 
 Vec3f blackbody_xyz(float kelvin) {
   const Vec3f xyz = integrate_xyz([&](float l) { return planck(l, kelvin); });

@@ -44,7 +44,8 @@ std::optional<PbrtToken> PbrtTokenizer::next() {
         if (s == '"') break;
         const bool escape = s == '\\' && pos_ + 1 < n;
         const char c2 = escape ? text_[pos_ + 1] : s;
-        if (c2 == '\n' || c2 == '\r') throw Error(file_, location(line_), "unterminated string: a newline inside quotes");
+        if (c2 == '\n' || c2 == '\r')
+          throw Error(file_, location(line_), "unterminated string: a newline inside quotes");
         pos_ += escape ? 2 : 1;
       }
       const std::string_view body = std::string_view(text_).substr(start, pos_ - start);
@@ -75,8 +76,7 @@ std::string pbrt_unescape(const PbrtToken& t, const std::string& file) {
         case '\\': c = '\\'; break;
         case '\'': c = '\''; break;
         case '"': c = '"'; break;
-        default:
-          throw Error(file, location(t.line), std::string("unknown escape '\\") + t.text[i] + "' in a string");
+        default: throw Error(file, location(t.line), std::string("unknown escape '\\") + t.text[i] + "' in a string");
       }
     }
     out.push_back(c);

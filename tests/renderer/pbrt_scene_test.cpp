@@ -69,8 +69,8 @@ TEST(PbrtScene, ObjectInstancesSitWhereTheirTransformsPutThem) {
   for (const Vec3f target : {Vec3f{-2.8f, -0.3f, -1}, Vec3f{0.2f, -0.3f, -1}, Vec3f{3.6f, -0.7f, -2}})
     expect_point(towards(target), target);
   // Spheres: radius 0.25 at x = -3 and 0, radius 0.5 at x = 3; aim at each sphere's point nearest the eye.
-  for (const auto& [centre, radius] : {std::pair{Vec3f{-3, 0, 0}, 0.25f}, std::pair{Vec3f{0, 0, 0}, 0.25f},
-                                       std::pair{Vec3f{3, 0, 0}, 0.5f}}) {
+  for (const auto& [centre, radius] :
+       {std::pair{Vec3f{-3, 0, 0}, 0.25f}, std::pair{Vec3f{0, 0, 0}, 0.25f}, std::pair{Vec3f{3, 0, 0}, 0.5f}}) {
     const Vec3f nearest = centre + normalize(eye - centre) * radius;
     expect_point(towards(nearest), nearest, 1e-3f);
   }

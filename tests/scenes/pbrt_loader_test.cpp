@@ -20,8 +20,9 @@ namespace fs = std::filesystem;
 
 const std::string kData = std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/";
 // A minimal options block so that inline tests only write their world.
-const std::string kHead = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
-                          "\"integer yresolution\" 8\nWorldBegin\n";  // the world starts on line 5
+const std::string kHead =
+    "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
+    "\"integer yresolution\" 8\nWorldBegin\n";  // the world starts on line 5
 
 std::string tmp(const std::string& sub) {
   const fs::path d = fs::path(KILN_TEST_TMP) / "pbrt_loader" / sub;
@@ -102,11 +103,12 @@ TEST(PbrtTokenizer, UnterminatedStringsAreErrorsWithTheLine) {
 }
 
 TEST(PbrtParams, EveryTypeBracketedOrBare) {
-  const SceneDesc s = parse(kHead +
-                            "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n"
-                            "  \"normal N\" [0 0 1 0 0 1 0 0 1] \"point2 uv\" [0 0 1 0 0 1]\n"
-                            "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [1 2 3] \"bool twosided\" \"true\"\n"
-                            " Shape \"sphere\" \"float radius\" 2.5\nAttributeEnd\n");
+  const SceneDesc s =
+      parse(kHead +
+            "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n"
+            "  \"normal N\" [0 0 1 0 0 1 0 0 1] \"point2 uv\" [0 0 1 0 0 1]\n"
+            "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [1 2 3] \"bool twosided\" \"true\"\n"
+            " Shape \"sphere\" \"float radius\" 2.5\nAttributeEnd\n");
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2}));
   EXPECT_EQ(s.meshes[0].normals.size(), 3u);
@@ -186,13 +188,15 @@ TEST(PbrtErrors, MeshDataIsCheckedAgainstItsCounts) {
   EXPECT_NE(error_of(kHead + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 3]\n")
                 .find("value 3 (entry 2) is out of range"),
             std::string::npos);
-  EXPECT_NE(error_of(kHead + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n").find("needs \"integer indices\""),
+  EXPECT_NE(error_of(kHead + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n")
+                .find("needs \"integer indices\""),
             std::string::npos);
   EXPECT_NE(error_of(kHead + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"normal N\" [0 0 1]\n")
                 .find("\"N\" has 1 normals"),
             std::string::npos);
-  EXPECT_NE(error_of(kHead + "Shape \"loopsubdiv\" \"integer levels\" 9 \"point3 P\" [0 0 0 1 0 0 0 1 0]\n").find("levels"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(kHead + "Shape \"loopsubdiv\" \"integer levels\" 9 \"point3 P\" [0 0 0 1 0 0 0 1 0]\n").find("levels"),
+      std::string::npos);
   EXPECT_NE(error_of(kHead + "Shape \"plymesh\" \"string filename\" \"none.ply\"\n").find("cannot find \"none.ply\""),
             std::string::npos);
 }
@@ -208,11 +212,12 @@ TEST(PbrtErrors, ErrorsInIncludedFilesNameThatFileAndTheInclusion) {
 // ---- transforms ----
 
 TEST(PbrtTransforms, DirectivesComposeOnTheRightAsPbrtDoes) {
-  const SceneDesc s = parse(kHead +
-                            "Translate 1 0 0\nScale 2 2 2\nRotate 90 0 0 1\n"
-                            "Shape \"trianglemesh\" \"point3 P\" [1 0 0 0 1 0 0 0 1]\n"
-                            "Identity\nTransform [1 0 0 0 0 1 0 0 0 0 1 0 5 6 7 1]\nConcatTransform [2 0 0 0 0 2 0 0 0 0 2 0 0 0 0 1]\n"
-                            "Shape \"trianglemesh\" \"point3 P\" [1 0 0 0 1 0 0 0 1]\n");
+  const SceneDesc s =
+      parse(kHead +
+            "Translate 1 0 0\nScale 2 2 2\nRotate 90 0 0 1\n"
+            "Shape \"trianglemesh\" \"point3 P\" [1 0 0 0 1 0 0 0 1]\n"
+            "Identity\nTransform [1 0 0 0 0 1 0 0 0 0 1 0 5 6 7 1]\nConcatTransform [2 0 0 0 0 2 0 0 0 0 2 0 0 0 0 1]\n"
+            "Shape \"trianglemesh\" \"point3 P\" [1 0 0 0 1 0 0 0 1]\n");
   ASSERT_EQ(s.meshes.size(), 2u);
   // p -> rotate -> scale -> translate: (1,0,0) -> (0,1,0) -> (0,2,0) -> (1,2,0).
   expect_near(s.meshes[0].to_world.point({1, 0, 0}), {1, 2, 0});
@@ -235,8 +240,9 @@ TEST(PbrtTransforms, CoordinateSystemsAndActiveTransforms) {
 }
 
 TEST(PbrtTransforms, CameraCoordinateSystemIsTheInverseCameraTransform) {
-  const SceneDesc s = parse("LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
-                            "CoordSysTransform \"camera\"\nShape \"sphere\"\n");
+  const SceneDesc s = parse(
+      "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+      "CoordSysTransform \"camera\"\nShape \"sphere\"\n");
   ASSERT_EQ(s.spheres.size(), 1u);
   expect_near(s.spheres[0].to_world.point({0, 0, 0}), {0, 0, 5});
   expect_near(s.spheres[0].to_world.vector({0, 0, 1}), {0, 0, -1});  // camera +z looks at the origin
@@ -292,9 +298,7 @@ TEST(PbrtCamera, DefaultCameraWithoutDirectivesIsPbrts) {
 }
 
 TEST(PbrtCamera, FiltersAndTheirRadii) {
-  auto filter_of = [](const std::string& f) {
-    return *parse("PixelFilter " + f + "\nWorldBegin\n").cameras[0].filter;
-  };
+  auto filter_of = [](const std::string& f) { return *parse("PixelFilter " + f + "\nWorldBegin\n").cameras[0].filter; };
   EXPECT_EQ(filter_of("\"box\"").kind, PixelFilterKind::Box);
   EXPECT_EQ(filter_of("\"box\"").radius, 0.5f);
   EXPECT_EQ(filter_of("\"box\" \"float xradius\" 1 \"float yradius\" 1").radius, 1.0f);
@@ -408,7 +412,7 @@ TEST_F(PbrtAllDirectives, Lights) {
   const MeshDesc& emitter = s.meshes[4];
   ASSERT_TRUE(emitter.emission);
   EXPECT_TRUE(emitter.two_sided_emission);
-  EXPECT_NEAR(emitter.emission->luminance(), 3.0f, 2e-3f);  // a blackbody of luminance 1, scaled by 3
+  EXPECT_NEAR(emitter.emission->luminance(), 3.0f, 2e-3f);              // a blackbody of luminance 1, scaled by 3
   EXPECT_NEAR(emitter.emission->r / emitter.emission->b, 1.0f, 0.08f);  // 6500 K is near white
   EXPECT_EQ(*s.spheres[1].emission, Rgb(1, 2, 3));
   ASSERT_EQ(s.point_lights.size(), 1u);
@@ -433,26 +437,28 @@ TEST_F(PbrtAllDirectives, Lights) {
 // ---- lights' pbrt conventions ----
 
 TEST(PbrtLights, PowerAndIlluminanceAsPbrtNormalisesThem) {
-  const SceneDesc s = parse(kHead +
-                            "LightSource \"point\" \"rgb I\" [1 1 1] \"float power\" 100\n"
-                            "LightSource \"spot\" \"float coneangle\" 30 \"float conedeltaangle\" 10 \"float power\" 100\n"
-                            "LightSource \"distant\" \"float illuminance\" 7\n"
-                            "LightSource \"infinite\" \"float illuminance\" 3\n");
+  const SceneDesc s =
+      parse(kHead +
+            "LightSource \"point\" \"rgb I\" [1 1 1] \"float power\" 100\n"
+            "LightSource \"spot\" \"float coneangle\" 30 \"float conedeltaangle\" 10 \"float power\" 100\n"
+            "LightSource \"distant\" \"float illuminance\" 7\n"
+            "LightSource \"infinite\" \"float illuminance\" 3\n");
   EXPECT_NEAR(s.point_lights[0].intensity.g, 100.0f / (4.0f * kPi), 1e-4f);
   const float cos_end = std::cos(radians(30.0f)), cos_start = std::cos(radians(20.0f));
-  EXPECT_NEAR(s.spot_lights[0].intensity.g,
-              100.0f / (2.0f * kPi * ((1.0f - cos_start) + 0.5f * (cos_start - cos_end))), 1e-3f);
+  EXPECT_NEAR(s.spot_lights[0].intensity.g, 100.0f / (2.0f * kPi * ((1.0f - cos_start) + 0.5f * (cos_start - cos_end))),
+              1e-3f);
   EXPECT_EQ(s.directional_lights[0].radiance, Rgb(7.0f));
   expect_near(s.directional_lights[0].direction, {0, 0, 1});  // from (0,0,0) to (0,0,1)
   EXPECT_NEAR(s.infinite_lights[0].radiance.g, 3.0f / kPi, 1e-6f);
 }
 
 TEST(PbrtLights, RgbIlluminantsAreTakenAsWrittenAndSpectraNormalisedToLuminanceOne) {
-  const SceneDesc s = parse(kHead +
-                            "AttributeBegin\nAreaLightSource \"diffuse\"\nShape \"sphere\"\nAttributeEnd\n"
-                            "AttributeBegin\nAreaLightSource \"diffuse\" \"spectrum L\" \"stdillum-D65\" \"float scale\" 2\n"
-                            "Shape \"sphere\"\nAttributeEnd\n"
-                            "AttributeBegin\nAreaLightSource \"diffuse\" \"spectrum L\" [300 5 800 5]\nShape \"sphere\"\nAttributeEnd\n");
+  const SceneDesc s = parse(
+      kHead +
+      "AttributeBegin\nAreaLightSource \"diffuse\"\nShape \"sphere\"\nAttributeEnd\n"
+      "AttributeBegin\nAreaLightSource \"diffuse\" \"spectrum L\" \"stdillum-D65\" \"float scale\" 2\n"
+      "Shape \"sphere\"\nAttributeEnd\n"
+      "AttributeBegin\nAreaLightSource \"diffuse\" \"spectrum L\" [300 5 800 5]\nShape \"sphere\"\nAttributeEnd\n");
   EXPECT_EQ(*s.spheres[0].emission, Rgb(1.0f));  // pbrt's default L: the colour space's illuminant, RGB 1
   EXPECT_EQ(*s.spheres[1].emission, Rgb(2.0f));
   EXPECT_NEAR(s.spheres[2].emission->luminance(), 1.0f, 1e-3f);  // a flat spectrum: luminance 1 whatever its level
@@ -460,13 +466,18 @@ TEST(PbrtLights, RgbIlluminantsAreTakenAsWrittenAndSpectraNormalisedToLuminanceO
 
 TEST(PbrtLights, ReverseOrientationAndMirrorsTurnTheEmittingSide) {
   const std::string tri = "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n";
-  const SceneDesc s = parse(kHead + "AreaLightSource \"diffuse\"\n" + tri +
-                            "AttributeBegin\nReverseOrientation\n" + tri + "AttributeEnd\n"
-                            "AttributeBegin\nScale 1 1 -1\n" + tri + "AttributeEnd\n"
-                            "AttributeBegin\nScale 1 1 -1\nReverseOrientation\n" + tri + "AttributeEnd\n"
-                            "AttributeBegin\nReverseOrientation\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] "
-                            "\"normal N\" [0 0 1 0 0 1 0 0 1]\nAttributeEnd\n"
-                            "AttributeBegin\nReverseOrientation\nShape \"sphere\"\nAttributeEnd\n");
+  const SceneDesc s =
+      parse(kHead + "AreaLightSource \"diffuse\"\n" + tri + "AttributeBegin\nReverseOrientation\n" + tri +
+            "AttributeEnd\n"
+            "AttributeBegin\nScale 1 1 -1\n" +
+            tri +
+            "AttributeEnd\n"
+            "AttributeBegin\nScale 1 1 -1\nReverseOrientation\n" +
+            tri +
+            "AttributeEnd\n"
+            "AttributeBegin\nReverseOrientation\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] "
+            "\"normal N\" [0 0 1 0 0 1 0 0 1]\nAttributeEnd\n"
+            "AttributeBegin\nReverseOrientation\nShape \"sphere\"\nAttributeEnd\n");
   ASSERT_EQ(s.meshes.size(), 5u);
   const std::vector<uint32_t> as_written{0, 1, 2}, reversed{0, 2, 1};
   EXPECT_EQ(s.meshes[0].indices, as_written);
@@ -505,9 +516,9 @@ TEST(PbrtIncludes, RelativeToTheIncludingFileThenTheMainFileImportIsScoped) {
   for (int i = 0; i < 5; ++i) EXPECT_EQ(s.meshes[size_t(i)].positions[0].z, float(i + 1)) << i;
   const auto kind = [&](int m) { return s.materials[size_t(s.meshes[size_t(m)].material)].pbrt->kind; };
   EXPECT_EQ(kind(0), PbrtMaterialKind::Diffuse);
-  EXPECT_EQ(kind(3), PbrtMaterialKind::Conductor);             // set inside the imported file
+  EXPECT_EQ(kind(3), PbrtMaterialKind::Conductor);                   // set inside the imported file
   EXPECT_EQ(s.meshes[3].indices, (std::vector<uint32_t>{0, 2, 1}));  // its ReverseOrientation
-  EXPECT_EQ(kind(4), PbrtMaterialKind::Diffuse);               // ... neither leaks out of it
+  EXPECT_EQ(kind(4), PbrtMaterialKind::Diffuse);                     // ... neither leaks out of it
   EXPECT_EQ(s.meshes[4].indices, (std::vector<uint32_t>{0, 1, 2}));
   EXPECT_EQ(s.meshes[5].indices.size(), 6u);  // mesh.ply: a quad, fanned
   EXPECT_EQ(s.meshes[6].indices.size(), 3u);  // mesh.ply.gz
@@ -526,9 +537,9 @@ TEST(PbrtIncludes, GzippedIncludesAndScenesAndIncludeCycles) {
   const std::string e = error_of(kHead + "Include \"loop.pbrt\"\n", dir + "/main.pbrt");
   EXPECT_NE(e.find("nest deeper than"), std::string::npos) << e;
   write(dir + "/broken.ply.gz", "not gzip at all");
-  EXPECT_NE(error_of(kHead + "Shape \"plymesh\" \"string filename\" \"broken.ply.gz\"\n", dir + "/main.pbrt")
-                .find("gzip"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(kHead + "Shape \"plymesh\" \"string filename\" \"broken.ply.gz\"\n", dir + "/main.pbrt").find("gzip"),
+      std::string::npos);
 }
 
 // ---- shapes ----
@@ -539,13 +550,14 @@ TEST(PbrtShapes, BilinearPatchesAndLoopSubdivisionThroughLoadScene) {
                             "\"integer indices\" [0 1 2 3 4 5 6 7]\n");
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes[0].indices, (std::vector<uint32_t>{0, 1, 3, 0, 3, 2, 4, 5, 7, 4, 7, 6}));
-  const Vec3f n = cross(s.meshes[0].positions[1] - s.meshes[0].positions[0],
-                        s.meshes[0].positions[3] - s.meshes[0].positions[0]);
+  const Vec3f n =
+      cross(s.meshes[0].positions[1] - s.meshes[0].positions[0], s.meshes[0].positions[3] - s.meshes[0].positions[0]);
   EXPECT_GT(n.z, 0.0f);  // pbrt's patch normal: (p10 - p00) x (p01 - p00)
   // loopsubdiv is subdivided by load_scene like any marked mesh (and --subdivide overrides it).
   const std::string dir = tmp("loop");
-  write(dir + "/tet.pbrt", kHead + "Shape \"loopsubdiv\" \"integer levels\" 2 \"point3 P\" [0 0 0 1 0 0 0 1 0 0 0 1] "
-                                   "\"integer indices\" [0 2 1 0 1 3 0 3 2 1 2 3]\n");
+  write(dir + "/tet.pbrt", kHead +
+                               "Shape \"loopsubdiv\" \"integer levels\" 2 \"point3 P\" [0 0 0 1 0 0 0 1 0 0 0 1] "
+                               "\"integer indices\" [0 2 1 0 1 3 0 3 2 1 2 3]\n");
   EXPECT_EQ(load_scene(dir + "/tet.pbrt").meshes[0].indices.size(), 4u * 16u * 3u);
   LoadOptions lo;
   lo.subdivide = 1;
@@ -579,7 +591,8 @@ TEST(PbrtWarnings, EveryUnsupportedFeatureIsNamedWithFileAndLine) {
       {f + "line 28 (TransformBegin)", "deprecated"},
       {f + "line 30 (WorldEnd)", "ignored"},
   };
-  for (const auto& [where, what] : expected) EXPECT_TRUE(has_warning(s, where, what)) << where << " " << what << "\n" << all_warnings(s);
+  for (const auto& [where, what] : expected)
+    EXPECT_TRUE(has_warning(s, where, what)) << where << " " << what << "\n" << all_warnings(s);
   EXPECT_EQ(s.warnings.size(), std::size(expected)) << all_warnings(s);
   for (const char* feature : {"textures", "participating media", "pbrt shape \"disk\"", "motion blur"}) {
     bool found = false;
@@ -592,9 +605,7 @@ TEST(PbrtWarnings, EveryUnsupportedFeatureIsNamedWithFileAndLine) {
 
 TEST(PbrtSpectrum, BlackbodyChromaticityFollowsThePlanckianLocus) {
   // CIE 1931 chromaticities of blackbodies (Planckian locus): 2856 K (illuminant A) and 6500 K.
-  const struct {
-    float kelvin, x, y;
-  } locus[] = {{2856.0f, 0.4476f, 0.4074f}, {6500.0f, 0.3135f, 0.3236f}};
+  const struct { float kelvin, x, y; } locus[] = {{2856.0f, 0.4476f, 0.4074f}, {6500.0f, 0.3135f, 0.3236f}};
   for (const auto& p : locus) {
     const Vec3f xyz = blackbody_xyz(p.kelvin);
     const float sum = xyz.x + xyz.y + xyz.z;
