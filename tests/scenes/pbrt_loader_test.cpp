@@ -244,7 +244,8 @@ TEST(PbrtTransforms, CameraCoordinateSystemIsTheInverseCameraTransform) {
       "LookAt 1 2 5  1 2 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
       "CoordSysTransform \"camera\"\nShape \"sphere\"\n");
   ASSERT_EQ(s.spheres.size(), 1u);
-  expect_near(s.spheres[0].to_world.point({0, 0, 0}), {1, 2, 5});     // the eye (camera-from-world would give (1, -2, 5))
+  // The eye; camera-from-world itself would put the sphere at (1, -2, 5).
+  expect_near(s.spheres[0].to_world.point({0, 0, 0}), {1, 2, 5});
   expect_near(s.spheres[0].to_world.vector({0, 0, 1}), {0, 0, -1});  // camera +z looks down -z
 }
 
