@@ -6,7 +6,7 @@
 #
 #   FUZZ_SECONDS=60     run time per harness
 #   FUZZ_PARALLEL=N     harnesses run at once (default: nproc; each uses one core)
-#   FUZZ_TARGETS="ply obj xml json"   subset to run
+#   FUZZ_TARGETS="ply obj xml json pbrt"   subset to run
 #   FUZZ_CMAKE_ARGS=... extra configure arguments
 #   FUZZ_BUILD=DIR      build folder (default build/fuzz)
 #
@@ -19,7 +19,7 @@ cd "$(dirname "$0")/.."
 
 FUZZ_SECONDS=${FUZZ_SECONDS:-60}
 FUZZ_PARALLEL=${FUZZ_PARALLEL:-$(nproc)}
-FUZZ_TARGETS=${FUZZ_TARGETS:-"ply obj xml json"}
+FUZZ_TARGETS=${FUZZ_TARGETS:-"ply obj xml json pbrt"}
 BUILD=${FUZZ_BUILD:-build/fuzz}   # the ctest Fuzz.LoadersRunClean builds in its own binary tree
 # Bounded memory and input size: a header that claims billions of elements must be rejected, not allocated.
 RSS_LIMIT_MB=2048

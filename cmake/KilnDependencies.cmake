@@ -7,6 +7,7 @@ find_package(pugixml REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(tinyobjloader REQUIRED)
+find_package(ZLIB REQUIRED)  # pbrt ".ply.gz" meshes and ".pbrt.gz" includes
 find_package(GTest)
 find_package(benchmark QUIET)
 

@@ -9,6 +9,7 @@
 #include "core/vec.h"
 #include "lights/area_light.h"
 #include "lights/directional_light.h"
+#include "lights/infinite_light.h"
 #include "lights/light_sample.h"
 #include "lights/mesh_light.h"
 #include "lights/point_light.h"
@@ -17,7 +18,7 @@
 
 namespace kiln {
 
-using Light = std::variant<PointLight, SpotLight, DirectionalLight, AreaLight, MeshLight, SphereLight>;
+using Light = std::variant<PointLight, SpotLight, DirectionalLight, AreaLight, MeshLight, SphereLight, InfiniteLight>;
 
 std::optional<LightSample> sample_li(const Light& light, const LightQuery& q, Vec2f u);
 // Solid-angle pdf that sample_li would produce the point p_light (with surface normal n_light, on triangle

@@ -6,8 +6,9 @@
 
 namespace kiln {
 
-MeshLight::MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t> indices, Rgb radiance)
-    : radiance_(radiance) {
+MeshLight::MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t> indices, Rgb radiance,
+                     bool two_sided)
+    : radiance_(radiance), two_sided_(two_sided) {
   if (indices.size() % 3 != 0)
     throw Error("LightMesh: " + std::to_string(indices.size()) + " vertex indices is not a whole number of triangles");
   tris_.resize(indices.size() / 3);
@@ -49,8 +50,8 @@ std::optional<LightSample> MeshLight::sample_li(const LightQuery& q, Vec2f u) co
   if (!(d2 > 0.0f) || !std::isfinite(d2)) return std::nullopt;
   const float d = std::sqrt(d2);
   const Vec3f wi = to_light / d;
-  const float cos_l = -dot(t.n, wi);
-  if (!(cos_l > 0.0f)) return std::nullopt;  // q sees the back (non-emitting) side
+  const float cos_l = two_sided_ ? std::abs(dot(t.n, wi)) : -dot(t.n, wi);
+  if (!(cos_l > 0.0f)) return std::nullopt;  // q sees the back (non-emitting) side, or the triangle edge-on
   LightSample s;
   s.li = radiance_;
   s.wi = wi;
@@ -69,7 +70,7 @@ float MeshLight::pdf_li(const LightQuery& q, Vec3f p_light, Vec3f, uint32_t prim
   const Vec3f to_light = p_light - q.p;
   const float d2 = length_squared(to_light);
   if (!(d2 > 0.0f)) return 0.0f;
-  const float cos_l = -dot(t.n, to_light) / std::sqrt(d2);
+  const float cos_l = (two_sided_ ? std::abs(dot(t.n, to_light)) : -dot(t.n, to_light)) / std::sqrt(d2);
   return cos_l > 0.0f ? (pmf / t.area) * d2 / cos_l : 0.0f;
 }
 

@@ -4,6 +4,7 @@
 //              reports for that triangle
 //   radiance   constant radiance L emitted from the FRONT side only: the side of the geometric normal
 //              (v1 - v0) x (v2 - v0) (right-hand rule, spec sections 7 and 9)
+//   two_sided  emit L from both sides instead (pbrt's "twosided" area lights)
 // A sample picks a triangle with probability proportional to its area (zero-area triangles are never picked),
 // then a uniform point on it; the area pdf 1/A_total becomes the solid-angle pdf d^2 / (|cos theta_l| A_total).
 #pragma once
@@ -18,14 +19,19 @@ namespace kiln {
 class MeshLight {
  public:
   // Throws kiln::Error when indices is not a multiple of 3 or names a vertex that does not exist.
-  MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t> indices, Rgb radiance);
+  MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t> indices, Rgb radiance,
+            bool two_sided = false);
 
   std::optional<LightSample> sample_li(const LightQuery& q, Vec2f u) const;
   // Density of sample_li at p_light on triangle prim; 0 when q is behind that triangle's emitting side.
   float pdf_li(const LightQuery& q, Vec3f p_light, Vec3f n_light, uint32_t prim) const;
   // n must be the triangle's geometric normal in winding order (not face-forwarded).
-  Rgb emitted(Vec3f n, Vec3f w) const { return dot(n, w) > 0.0f ? radiance_ : Rgb{}; }
-  float power() const { return kPi * total_area_ * radiance_.luminance(); }
+  Rgb emitted(Vec3f n, Vec3f w) const {
+    const float c = dot(n, w);
+    return c > 0.0f || (two_sided_ && c < 0.0f) ? radiance_ : Rgb{};
+  }
+  float power() const { return (two_sided_ ? 2.0f : 1.0f) * kPi * total_area_ * radiance_.luminance(); }
+  bool two_sided() const { return two_sided_; }
   static constexpr bool kDelta = false;
 
   size_t triangle_count() const { return tris_.size(); }
@@ -44,6 +50,7 @@ class MeshLight {
   Distribution1D dist_;
   Rgb radiance_;
   float total_area_ = 0;
+  bool two_sided_ = false;
 };
 
 }  // namespace kiln

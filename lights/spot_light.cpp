@@ -4,8 +4,9 @@
 
 namespace kiln {
 
-SpotLight::SpotLight(Vec3f position, Vec3f direction, Rgb intensity, float coverage_deg, float falloff_deg)
-    : position_(position), intensity_(intensity) {
+SpotLight::SpotLight(Vec3f position, Vec3f direction, Rgb intensity, float coverage_deg, float falloff_deg,
+                     bool smooth_step)
+    : position_(position), intensity_(intensity), smooth_step_(smooth_step) {
   const float len = length(direction);
   if (!(len > 0.0f) || !std::isfinite(len)) throw Error("SpotLight: Direction has zero length");
   direction_ = direction / len;
@@ -20,7 +21,7 @@ float SpotLight::falloff(Vec3f w) const {
   if (cos_a >= cos_falloff_) return 1.0f;
   if (cos_a < cos_coverage_ || cos_falloff_ <= cos_coverage_) return 0.0f;
   const float s = (cos_a - cos_coverage_) / (cos_falloff_ - cos_coverage_);
-  return sqr(sqr(s));
+  return smooth_step_ ? s * s * (3.0f - 2.0f * s) : sqr(sqr(s));
 }
 
 std::optional<LightSample> SpotLight::sample_li(const LightQuery& q, Vec2f) const {
@@ -42,10 +43,10 @@ std::optional<LightSample> SpotLight::sample_li(const LightQuery& q, Vec2f) cons
 }
 
 float SpotLight::power() const {
-  // Exact flux: full intensity over the inner cap, and s^4 with s linear in cos over the ring, whose integral
-  // over cos is (cos_fall - cos_cov) / 5.
+  // Exact flux: full intensity over the inner cap, and s^4 (or smoothstep(s)) with s linear in cos over the ring,
+  // whose integral over cos is (cos_fall - cos_cov) / 5 (or / 2).
   const float cap = 1.0f - cos_falloff_;
-  const float ring = (cos_falloff_ - cos_coverage_) / 5.0f;
+  const float ring = (cos_falloff_ - cos_coverage_) / (smooth_step_ ? 2.0f : 5.0f);
   return 2.0f * kPi * intensity_.luminance() * (cap + ring);
 }
 

@@ -8,6 +8,7 @@
 // as full apertures, i.e. compares the angle alpha between the axis and the direction to the point with angle/2.
 // Between the two half-angles the intensity is scaled by s^4, s = (cos a - cos cov) / (cos fall - cos cov).
 // A falloff wider than the coverage is clamped to the coverage (a hard-edged cone).
+// With SpotFalloff::SmoothStep (pbrt-v4) the ring's scale is smoothstep(s) = s^2 (3 - 2 s) instead of s^4.
 #pragma once
 #include "lights/light_sample.h"
 
@@ -15,7 +16,8 @@ namespace kiln {
 
 class SpotLight {
  public:
-  SpotLight(Vec3f position, Vec3f direction, Rgb intensity, float coverage_deg, float falloff_deg);
+  SpotLight(Vec3f position, Vec3f direction, Rgb intensity, float coverage_deg, float falloff_deg,
+            bool smooth_step = false);
   std::optional<LightSample> sample_li(const LightQuery& q, Vec2f u) const;
   float pdf_li(const LightQuery&, Vec3f, Vec3f, uint32_t) const { return 0.0f; }
   Rgb emitted(Vec3f, Vec3f) const { return {}; }
@@ -31,6 +33,7 @@ class SpotLight {
   Vec3f position_, direction_;
   Rgb intensity_;
   float cos_coverage_ = 0, cos_falloff_ = 1;
+  bool smooth_step_ = false;
 };
 
 }  // namespace kiln

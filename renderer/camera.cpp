@@ -1,12 +1,13 @@
 #include "renderer/camera.h"
 
 #include "core/error.h"
+#include "core/sampling.h"
 
 namespace kiln {
 
 Camera::Camera(const CameraDesc& c)
     : e_(c.position), near_(c.near_distance), width_(c.width), height_(c.height), aperture_(c.aperture_size),
-      focus_(c.focus_distance) {
+      focus_(c.focus_distance), disk_lens_(c.disk_lens) {
   if (width_ <= 0 || height_ <= 0) throw Error("camera " + c.id + ": image resolution must be positive");
   if (!(length(c.gaze) > 0.0f)) throw Error("camera " + c.id + ": gaze has zero length");
   w_ = -normalize(c.gaze);
@@ -37,7 +38,9 @@ Ray Camera::generate_ray(float x, float y, Vec2f lens) const {
   // the point in focus lies on the plane at FocusDistance along the gaze.
   const float scale = focus_ / near_;
   const Vec3f focus_point = e_ + dir * scale;
-  const Vec3f origin = e_ + u_ * ((lens.x - 0.5f) * aperture_) + v_ * ((lens.y - 0.5f) * aperture_);
+  // pbrt's thin lens: a disk of diameter aperture_ (concentric map), same focus plane.
+  const Vec2f d = disk_lens_ ? sample_uniform_disk_concentric(lens) * 0.5f : Vec2f(lens.x - 0.5f, lens.y - 0.5f);
+  const Vec3f origin = e_ + u_ * (d.x * aperture_) + v_ * (d.y * aperture_);
   return Ray{origin, normalize(focus_point - origin), 0.0f, kInfinity};
 }
 

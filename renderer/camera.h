@@ -20,6 +20,7 @@ class Camera {
   float l_, r_, b_, t_, near_;
   int width_, height_;
   float aperture_ = 0.0f, focus_ = 0.0f;
+  bool disk_lens_ = false;
 };
 
 }  // namespace kiln

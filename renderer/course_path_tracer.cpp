@@ -58,6 +58,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
       Hit hit;
       if (!query_intersect(w, ray, hit, c, depth == 0)) {
         if (depth == 0) L += beta * w.background;
+        if (after_specular || !use_nee) L += beta * escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
         break;
       }
       SurfaceInteraction si = make_interaction<kMeshesOnly>(w, ray, hit);

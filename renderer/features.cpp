@@ -13,6 +13,7 @@ std::string describe_features(uint32_t mask) {
       {kFeatureAmbient, "ambient"},         {kFeatureGlossy, "glossy"},
       {kFeatureDelta, "delta"},             {kFeatureDielectric, "dielectric"},
       {kFeatureTextures, "textures"},       {kFeatureDepthOfField, "depth-of-field"},
+      {kFeatureInfiniteLights, "infinite-lights"},
   };
   std::string s;
   for (const auto& [bit, name] : kNames)

@@ -21,6 +21,7 @@ enum Feature : uint32_t {
   kFeatureDielectric = 1u << 11,     // oriented materials (smooth or rough dielectrics): media are tracked
   kFeatureTextures = 1u << 12,        // parsed but not rendered yet
   kFeatureDepthOfField = 1u << 13,
+  kFeatureInfiniteLights = 1u << 14,  // rays that leave the scene see light
   kFeatureAll = 0xffffffffu,
 };
 

@@ -8,14 +8,14 @@
 
 int main(int argc, char** argv) {
   using namespace kiln;
-  CLI::App app{"Kiln: an Embree-accelerated CPU path tracer for CENG795 XML, CS171 JSON and PLY/OBJ scenes"};
+  CLI::App app{"Kiln: an Embree-accelerated CPU path tracer for CENG795 XML, CS171 JSON, pbrt-v4 and PLY/OBJ scenes"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("kiln ") + KILN_VERSION);
 
   RenderArgs ra;
   std::string accel = "embree";
   auto* render = app.add_subcommand("render", "Render every camera of a scene (or one) to linear EXR + PNG preview");
-  render->add_option("scene", ra.scene, "Scene file: .xml (CENG795), .json (CS171), .ply or .obj (quick look)")->required();
+  render->add_option("scene", ra.scene, "Scene file: .xml (CENG795), .json (CS171), .pbrt (pbrt-v4), .ply or .obj (quick look)")->required();
   render->add_option("-o,--output", ra.out_dir, "Output folder (created if missing)")->capture_default_str();
   render->add_option("--camera", ra.camera, "Render only the camera with this id");
   render->add_option("--spp", ra.spp, "Samples per pixel (default: the camera's NumSamples)")->check(CLI::PositiveNumber);
@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
   std::string profile_accel = "embree";
   auto* profile = app.add_subcommand("profile", "Time and measure the phases of a render (parse, subdivision, "
                                                 "build, render), rays per second and peak memory");
-  profile->add_option("scene", pa.scene, "Scene file (.xml, .json) or bare mesh (.ply, .obj)")->required();
+  profile->add_option("scene", pa.scene, "Scene file (.xml, .json, .pbrt) or bare mesh (.ply, .obj)")->required();
   profile->add_option("--subdivide", pa.subdivide, "Loop-subdivide the scene's meshes this many times (default: "
                                                   "the scene's own setting)");
   profile->add_option("--accel", profile_accel, "Ray-query backend: embree or bvh")

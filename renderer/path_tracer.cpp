@@ -35,6 +35,9 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
     Hit hit;
     if (!query_intersect(w, ray, hit, c, depth == 0)) {
       if (depth == 0) L += beta * w.background;
+      L += beta * escaped_radiance(w, ray.d, prev, [&](float light_pdf) {
+             return emission_weight(s, use_nee, after_specular, prev_pdf, light_pdf);
+           });
       break;
     }
     SurfaceInteraction si = make_interaction<kMeshesOnly>(w, ray, hit);

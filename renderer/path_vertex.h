@@ -118,6 +118,19 @@ inline std::optional<DirectLight> sample_direct_light(const World& w, const Surf
   return DirectLight{f * ls->li * (abs_cos_theta(wi_l) / light_pdf), light_pdf, wi_l, ls->delta};
 }
 
+// Radiance that infinite lights send along a ray leaving the scene in direction d, each weighted by weight(light
+// index, the density with which NEE from `from` would have chosen d).
+template <typename Weight>
+Rgb escaped_radiance(const World& w, Vec3f d, const LightQuery& from, Weight&& weight) {
+  Rgb le(0.0f);
+  const Vec3f dir = normalize(d);
+  for (const int i : w.infinite_lights) {
+    const InfiniteLight& light = std::get<InfiniteLight>(w.lights[size_t(i)]);
+    le += light.radiance(dir) * weight(light.pdf_direction(from, dir) * w.light_selector.pmf(size_t(i)));
+  }
+  return le;
+}
+
 // Solid-angle density with which next event estimation from `from` would have chosen the point of light `light`
 // that a sampled ray found at si.
 inline float emitter_pdf(const World& w, int light, const LightQuery& from, const SurfaceInteraction& si) {

@@ -146,7 +146,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     if (sd.smooth) w.features |= kFeatureSmoothNormals;
     if (m.emission && !m.emission->is_black()) {
       sd.light = int(w.lights.size());
-      w.lights.emplace_back(MeshLight(tm.p, tm.idx, *m.emission));
+      w.lights.emplace_back(MeshLight(tm.p, tm.idx, *m.emission, m.two_sided_emission));
       ++w.stats.mesh_lights;
       w.features |= kFeatureMeshLights;
     }
@@ -216,7 +216,8 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     ++w.stats.point_lights;
   }
   for (const SpotLightDesc& l : scene.spot_lights) {
-    w.lights.emplace_back(SpotLight(l.position, l.direction, l.intensity, l.coverage_deg, l.falloff_deg));
+    w.lights.emplace_back(SpotLight(l.position, l.direction, l.intensity, l.coverage_deg, l.falloff_deg,
+                                    l.falloff == SpotFalloff::SmoothStep));
     ++w.stats.spot_lights;
   }
   for (const DirectionalLightDesc& l : scene.directional_lights) {
@@ -228,6 +229,12 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     w.lights.emplace_back(make_area_light(l));
     ++w.stats.area_lights;
     w.features |= kFeatureAreaLights;
+  }
+  for (const InfiniteLightDesc& l : scene.infinite_lights) {
+    w.infinite_lights.push_back(int(w.lights.size()));
+    w.lights.emplace_back(InfiniteLight(l.radiance, w.scene_radius));
+    ++w.stats.infinite_lights;
+    w.features |= kFeatureInfiniteLights;
   }
   if (!w.lights.empty()) {
     w.light_selector = LightSelector(w.lights, options.light_selection);

@@ -27,7 +27,7 @@ struct ShapeData {
 struct WorldStats {
   size_t meshes = 0, triangles = 0, spheres = 0, instances = 0;
   size_t point_lights = 0, spot_lights = 0, directional_lights = 0, area_lights = 0, mesh_lights = 0,
-         sphere_lights = 0;
+         sphere_lights = 0, infinite_lights = 0;
   size_t materials = 0;
   std::map<std::string, size_t> compiled_materials;  // Material::describe() -> how many materials compiled to it
   size_t interface_shapes = 0;  // shapes left out because their material only marks a boundary (pbrt "interface")
@@ -43,6 +43,7 @@ struct World {
   std::vector<std::vector<Vec3f>> normals;      // smooth per-vertex normals
   std::vector<Material> materials;
   std::vector<Light> lights;
+  std::vector<int> infinite_lights;  // indices into lights of what rays that leave the scene see
   LightSelector light_selector;
   Rgb ambient{0};
   Rgb background{0};

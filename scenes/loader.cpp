@@ -7,6 +7,7 @@
 #include "scenes/json_loader.h"
 #include "scenes/mesh_scene.h"
 #include "scenes/obj_loader.h"
+#include "scenes/pbrt_loader.h"
 #include "scenes/ply_loader.h"
 #include "scenes/subdivision.h"
 #include "scenes/xml_loader.h"
@@ -21,6 +22,7 @@ SceneDesc load_scene(const std::string& path, const LoadOptions& options) {
   if (!std::ifstream(path).good()) throw Error(path, "", "cannot be opened for reading");
   std::string ext = fs::path(path).extension().string();
   for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext == ".gz") ext = fs::path(path).stem().extension().string() + ext;  // scene.pbrt.gz
   SceneDesc scene;
   if (ext == ".xml") {
     scene = load_ceng795_xml(path);
@@ -30,8 +32,10 @@ SceneDesc load_scene(const std::string& path, const LoadOptions& options) {
     scene = make_mesh_scene(load_ply(path), path);
   } else if (ext == ".obj") {
     scene = make_mesh_scene(load_obj(path), path);
+  } else if (ext == ".pbrt" || ext == ".pbrt.gz") {
+    scene = load_pbrt(path);
   } else {
-    throw Error(path, "", "unknown scene format '" + ext + "' (expected .xml, .json, .ply or .obj)");
+    throw Error(path, "", "unknown scene format '" + ext + "' (expected .xml, .json, .pbrt, .ply or .obj)");
   }
   if (options.subdivide > kMaxSubdivisionLevels)
     throw Error("--subdivide", "", "at most " + std::to_string(kMaxSubdivisionLevels) + " levels");

@@ -1,5 +1,5 @@
-// Loads any scene Kiln understands, chosen by extension: .xml (CENG795), .json (CS171), .ply / .obj (a bare mesh
-// with an automatic camera, ground plane and light).
+// Loads any scene Kiln understands, chosen by extension: .xml (CENG795), .json (CS171), .pbrt (pbrt-v4), .ply / .obj
+// (a bare mesh with an automatic camera, ground plane and light).
 #pragma once
 #include <string>
 

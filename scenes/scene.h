@@ -1,4 +1,4 @@
-// Format-independent scene description. Loaders (XML, JSON, PLY, OBJ) only fill this; the renderer builds its
+// Format-independent scene description. Loaders (XML, JSON, PLY, OBJ, pbrt-v4) only fill this; the renderer builds its
 // world (geometry, materials, lights) from it. Plain data, no behaviour.
 #pragma once
 #include <array>
@@ -58,6 +58,7 @@ struct CameraDesc {
   std::string image_name;  // file name only (ImageName)
   float focus_distance = 0.0f;
   float aperture_size = 0.0f;  // 0: pinhole
+  bool disk_lens = false;      // aperture_size is the diameter of a disk lens (pbrt lensradius) instead of a square's side
   bool left_handed = false;
   std::optional<TonemapDesc> tonemap;
   RendererKind renderer = RendererKind::RayTracing;
@@ -128,6 +129,7 @@ struct MeshDesc {
   int material = -1;           // index into SceneDesc::materials
   Transform to_world;
   std::optional<Rgb> emission;  // LightMesh radiance (front side)
+  bool two_sided_emission = false;  // emission leaves both sides (pbrt "twosided" area lights)
   bool is_instance_base = false;  // referenced by a MeshInstance (kept in object space for instancing)
   bool visible = true;            // false: only a prototype for instances, not itself in the scene
   int subdivide = 0;              // Loop subdivision levels requested for this mesh
@@ -152,7 +154,13 @@ struct InstanceDesc {
 
 struct PointLightDesc { Vec3f position; Rgb intensity; };
 struct DirectionalLightDesc { Vec3f direction; Rgb radiance; };
-struct SpotLightDesc { Vec3f position; Vec3f direction; Rgb intensity; float coverage_deg = 0; float falloff_deg = 0; };
+// How a spot light fades between its falloff and coverage cones: the course's s^4 with s linear in cos, or pbrt's
+// smoothstep in cos.
+enum class SpotFalloff { Quartic, SmoothStep };
+struct SpotLightDesc {
+  Vec3f position; Vec3f direction; Rgb intensity; float coverage_deg = 0; float falloff_deg = 0;
+  SpotFalloff falloff = SpotFalloff::Quartic;
+};
 // Square (Normal + Size) or parallelogram (edge vectors) emitter; radiance constant.
 struct AreaLightDesc {
   Vec3f position, normal;
@@ -162,6 +170,8 @@ struct AreaLightDesc {
   bool radiance_is_intensity = false;  // 2019 <Intensity> spelling (see README for the convention)
 };
 struct EnvLightDesc { std::string image_path; };
+// Constant radiance arriving from every direction (pbrt "infinite" light with "L"), seen by rays that escape.
+struct InfiniteLightDesc { Rgb radiance; };
 
 struct SceneDesc {
   std::string source_path;  // file it was loaded from
@@ -183,6 +193,7 @@ struct SceneDesc {
   std::vector<SpotLightDesc> spot_lights;
   std::vector<AreaLightDesc> area_lights;
   std::vector<EnvLightDesc> env_lights;
+  std::vector<InfiniteLightDesc> infinite_lights;
   bool png_gamma_encode = false;  // CS171: the PNG preview applies gamma 2.2 (no tonemap)
   // Features present in the file that the renderer does not render yet (e.g. "textures", "motion blur");
   // reported by `kiln info` and warned about once at render time.

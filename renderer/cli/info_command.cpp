@@ -71,9 +71,10 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
   const WorldStats& ws = world->stats;
   std::printf("\ncompiled:");
   for (const auto& [k, v] : ws.compiled_materials) std::printf(" %s x%zu", k.c_str(), v);
-  std::printf("\nlights: ambient %s, point %zu, spot %zu, directional %zu, area %zu, mesh %zu, sphere %zu, env %zu\n",
-              s.ambient_light.is_black() ? "off" : "on", ws.point_lights, ws.spot_lights, ws.directional_lights,
-              ws.area_lights, ws.mesh_lights, ws.sphere_lights, s.env_lights.size());
+  std::printf(
+      "\nlights: ambient %s, point %zu, spot %zu, directional %zu, area %zu, mesh %zu, sphere %zu, env %zu, infinite %zu\n",
+      s.ambient_light.is_black() ? "off" : "on", ws.point_lights, ws.spot_lights, ws.directional_lights, ws.area_lights,
+      ws.mesh_lights, ws.sphere_lights, s.env_lights.size(), s.infinite_lights.size());
   std::printf("features: %s\n", describe_features(world->features).c_str());
   std::printf("needs: spheres %s, instances %s, textures %s, cone sampler %s\n",
               (world->features & kFeatureSpheres) ? "yes" : "no", (world->features & kFeatureInstances) ? "yes" : "no",

@@ -7,10 +7,12 @@
 // InvariantViolation). Any exception other than kiln::Error escapes, and aborts the fuzzer as an uncaught
 // exception; crashes, leaks and sanitizer reports are the sanitizers' business.
 //
-// PLY and OBJ have in-memory entry points. The XML and JSON loaders only take a path, so the input is written to
-// `scratch/input.xml` (`.json`) first. The scratch folder also holds small fixture files with fixed names that the
-// seeds reference (plyFile="fixture.ply", binaryFile="vertices.bin", obj_file_path "fixture.obj", ...), so
-// mutated scenes reach the code behind a successful reference and not only the "cannot open" error.
+// PLY, OBJ and pbrt have in-memory entry points (pbrt's as though the text were `scratch/input.pbrt`, so its
+// Include, Import and plymesh names resolve in the scratch folder). The XML and JSON loaders only take a path, so the
+// input is written to `scratch/input.xml` (`.json`) first. The scratch folder also holds small fixture files with
+// fixed names that the seeds reference (plyFile="fixture.ply", binaryFile="vertices.bin", obj_file_path
+// "fixture.obj", Include "fixture_include.pbrt", plymesh "fixture.ply.gz", ...), so mutated scenes reach the code
+// behind a successful reference and not only the "cannot open" error.
 #pragma once
 #include <array>
 #include <cmath>
@@ -27,15 +29,17 @@
 #include <vector>
 
 #include "core/error.h"
+#include "scenes/gzip_file.h"
 #include "scenes/json_loader.h"
 #include "scenes/obj_loader.h"
+#include "scenes/pbrt_loader.h"
 #include "scenes/ply_loader.h"
 #include "scenes/xml_loader.h"
 
 namespace kiln::fuzz {
 
-enum class Loader { Ply, Obj, Xml, Json };
-inline constexpr std::array<Loader, 4> kLoaders = {Loader::Ply, Loader::Obj, Loader::Xml, Loader::Json};
+enum class Loader { Ply, Obj, Xml, Json, Pbrt };
+inline constexpr std::array<Loader, 5> kLoaders = {Loader::Ply, Loader::Obj, Loader::Xml, Loader::Json, Loader::Pbrt};
 
 // Folder name under tests/fuzz/corpus/ and tests/fuzz/regressions/, and the input file extension.
 inline std::string_view loader_name(Loader l) {
@@ -48,6 +52,8 @@ inline std::string_view loader_name(Loader l) {
       return "xml";
     case Loader::Json:
       return "json";
+    case Loader::Pbrt:
+      return "pbrt";
   }
   return "unknown";
 }
@@ -100,6 +106,16 @@ inline void write_fixtures(const std::filesystem::path& dir) {
   write_bytes(dir / "vertices.bin", little_endian_block<float>(3, {0, 0, 0, 1, 0, 0, 0, 1, 0}));
   write_bytes(dir / "texcoords.bin", little_endian_block<float>(3, {0, 0, 1, 0, 0, 1}));
   write_bytes(dir / "faces.bin", little_endian_block<int32_t>(1, {1, 2, 3}));
+  const std::string ply_text =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
+  write_bytes(dir / "fixture.ply.gz", gzip(ply_text));
+  write_bytes(dir / "fixture_include.pbrt",
+              "AttributeBegin\n  Material \"conductor\" \"spectrum eta\" \"metal-Au-eta\" \"float roughness\" 0.1\n"
+              "  Translate 0 0 1\n  Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n"
+              "AttributeEnd\n");
+  write_bytes(dir / "fixture.spd", "# wavelength value\n400 0.2\n500 0.5\n600 0.8\n700 0.9\n");
 }
 
 // A loader returned a description that breaks the SceneDesc contract (a finding, like a crash).
@@ -174,6 +190,18 @@ inline void check_scene(const SceneDesc& s) {
     require(finite(l.direction) && finite(l.radiance), "a directional light is non-finite");
   for (const auto& l : s.spot_lights)
     require(finite(l.position) && finite(l.direction) && finite(l.intensity), "a spot light is non-finite");
+  for (const auto& l : s.infinite_lights) require(finite(l.radiance), "an infinite light is non-finite");
+  for (const auto& m : s.materials)
+    if (m.pbrt)
+      require(finite(m.pbrt->reflectance) && finite(m.pbrt->conductor_eta) && finite(m.pbrt->conductor_k) &&
+                  finite(m.pbrt->eta) && m.pbrt->eta > 0 && finite(m.pbrt->uroughness) && finite(m.pbrt->vroughness) &&
+                  finite(m.pbrt->albedo) && finite(m.pbrt->g) && finite(m.pbrt->thickness) &&
+                  (!m.pbrt->conductor_reflectance || finite(*m.pbrt->conductor_reflectance)),
+              "a pbrt material has a non-finite or invalid parameter");
+  for (const auto& c : s.cameras)
+    if (c.filter)
+      require(finite(c.filter->radius) && c.filter->radius > 0 && finite(c.filter->sigma) && c.filter->sigma > 0,
+              "camera '" + c.id + "' has an invalid pixel filter");
   for (const auto& l : s.area_lights) {
     require(finite(l.position) && finite(l.normal) && finite(l.size) && finite(l.radiance) &&
                 (!l.edges || (finite((*l.edges)[0]) && finite((*l.edges)[1]))),
@@ -211,6 +239,9 @@ inline Outcome run_loader(Loader loader, std::string_view data, const std::files
         check_scene(load_cs171_json(path.string()));
         break;
       }
+      case Loader::Pbrt:
+        check_scene(parse_pbrt(std::string(data), (scratch / "input.pbrt").string()));
+        break;
     }
   } catch (const Error& e) {
     return {false, e.what()};

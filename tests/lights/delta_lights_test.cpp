@@ -63,6 +63,21 @@ TEST(SpotLight, PowerIsTheIntegralOfTheFalloff) {
   EXPECT_THROW(SpotLight(Vec3f{0, 0, 0}, Vec3f{0, 0, 0}, kI, 30.0f, 10.0f), Error);
 }
 
+// pbrt-v4's spot light: smoothstep(s) = s^2 (3 - 2 s) across the ring instead of s^4, and its flux.
+TEST(SpotLight, SmoothStepFalloffAndPower) {
+  const SpotLight light({0, 0, 0}, {0, 0, 1}, kI, 60.0f, 20.0f, true);
+  const float cos_cov = std::cos(radians(30)), cos_fall = std::cos(radians(10));
+  EXPECT_NEAR(light.falloff({0, 0, 1}), 1.0f, 1e-6f);
+  for (float angle : {12.0f, 20.0f, 28.0f}) {
+    const float a = radians(angle);
+    const float s = (std::cos(a) - cos_cov) / (cos_fall - cos_cov);
+    EXPECT_NEAR(light.falloff({std::sin(a), 0, std::cos(a)}), s * s * (3 - 2 * s), 1e-4f) << angle;
+  }
+  EXPECT_EQ(light.falloff({std::sin(radians(31)), 0, std::cos(radians(31))}), 0.0f);
+  const double numeric = test::integrate_sphere([&](Vec3f w) { return double(light.falloff(w)); }, 1024, 2048);
+  EXPECT_NEAR(light.power(), numeric * kI.luminance(), 2e-3 * numeric * kI.luminance());
+}
+
 TEST(DirectionalLight, ConstantIrradianceAndFarTarget) {
   const DirectionalLight light({1, -0.8f, -1}, Rgb(200.0f), 50.0f);
   const LightQuery q{{3, 4, 5}, {0, 1, 0}};

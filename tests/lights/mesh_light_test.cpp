@@ -72,6 +72,30 @@ TEST(MeshLight, EmitsFromTheFrontSideOnly) {
   EXPECT_TRUE(light.sample_li(below, {0.5f, 0.5f}).has_value());
 }
 
+// pbrt's "twosided" area lights: the same radiance leaves the back, with the back's irradiance by Lambert's formula.
+TEST(MeshLight, TwoSidedEmitsFromBothSides) {
+  const std::vector<Vec3f> tri{{-0.5f, -0.4f, 1.0f}, {0.2f, 0.9f, 1.3f}, {0.8f, -0.3f, 0.9f}};  // normal faces down
+  const MeshLight light(tri, std::vector<uint32_t>{0, 1, 2}, kRadiance, true);
+  EXPECT_TRUE(light.two_sided());
+  const Vec3f n = normalize(cross(tri[1] - tri[0], tri[2] - tri[0]));
+  EXPECT_EQ(light.emitted(n, -n), kRadiance);
+  EXPECT_EQ(light.emitted(n, n), kRadiance);
+  for (const LightQuery q : {LightQuery{{0, 0, 0}, {0, 0, 1}}, LightQuery{{0.1f, 0.2f, 3.0f}, {0, 0, -1}},
+                             LightQuery{{0.4f, -0.1f, 2.2f}, normalize(Vec3f{0.3f, 0.1f, -1})}}) {
+    const double expected = test::polygon_irradiance(tri, q.p, q.n, kL);
+    const auto e = irradiance(light, q, 12);
+    EXPECT_EQ(e.invalid, 0);
+    EXPECT_TRUE(within_error(e, expected)) << e.mean << " +- " << e.std_error << " vs " << expected;
+    Rng rng(4, 4);
+    for (int i = 0; i < 100; ++i) {
+      const auto s = light.sample_li(q, rng.next_2d());
+      ASSERT_TRUE(s);
+      EXPECT_NEAR(light.pdf_li(q, s->p_light, s->n_light, 0), s->pdf, 1e-3f * s->pdf);
+    }
+  }
+  EXPECT_NEAR(light.power(), 2.0f * make(tri, {0, 1, 2}).power(), 1e-5f);
+}
+
 // Disjoint triangles with different areas plus a degenerate one: which triangle each sample lands on must follow
 // the area distribution (chi-square), and the degenerate triangle is never chosen.
 TEST(MeshLight, PicksTrianglesInProportionToArea) {

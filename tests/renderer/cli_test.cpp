@@ -115,6 +115,32 @@ TEST_F(CliBadInput, TruncatedPly) {
 
 TEST_F(CliBadInput, UnknownExtension) { expect_bad_input(write_file(dir_, "scene.txt", "hello"), "unknown scene format"); }
 
+// Issue 21: malformed pbrt-v4 files (tests/data/pbrt/bad/) fail with exit 2, naming file and line.
+TEST_F(CliBadInput, PbrtUnknownDirective) {
+  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/unknown_directive.pbrt",
+                   "line 4: unknown directive 'Frobnicate'");
+}
+
+TEST_F(CliBadInput, PbrtMissingWorldBegin) {
+  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/missing_worldbegin.pbrt",
+                   "line 3 (Material): Material before WorldBegin");
+}
+
+TEST_F(CliBadInput, PbrtUnbalancedAttributeEnd) {
+  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/unbalanced_attributeend.pbrt",
+                   "line 7 (AttributeEnd): AttributeEnd without a matching AttributeBegin");
+}
+
+TEST_F(CliBadInput, PbrtMissingInclude) {
+  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/missing_include.pbrt",
+                   "line 4 (Include): cannot find \"geometry/not_there.pbrt\"");
+}
+
+TEST_F(CliBadInput, PbrtWrongParameterType) {
+  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/wrong_parameter_type.pbrt",
+                   "line 2 (Camera \"perspective\"): parameter \"fov\" is declared \"string\"");
+}
+
 TEST_F(CliBadInput, BadOption) {
   const RunResult r = run_kiln("render " + dir_ + "/x.xml --spp -3");
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -137,6 +163,36 @@ TEST(Cli, RenderWritesExrPngAndStats) {
   // Nothing temporary left next to the outputs.
   for (const auto& e : fs::directory_iterator(dir + "/out"))
     EXPECT_EQ(e.path().filename().string().rfind(".", 0), std::string::npos) << e.path();
+}
+
+// Issue 21: render, info, profile and check-bvh read pbrt-v4 files; the EXR is named from Film "filename".
+TEST(Cli, PbrtSceneRendersAndEveryCommandReadsIt) {
+  const std::string dir = tmp_dir("cli_pbrt");
+  fs::remove_all(dir + "/out");
+  const std::string data = std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/";
+  const RunResult r = run_kiln("render " + data + "all_directives.pbrt -o " + dir + "/out -q --spp 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const fs::path exr = dir + "/out/all.exr";  // Film "filename" "renders/all.png"
+  ASSERT_TRUE(fs::exists(exr)) << r.output;
+  EXPECT_TRUE(fs::exists(dir + "/out/all.png"));
+  const Image img = read_exr(exr.string()).rgb;
+  EXPECT_EQ(img.width(), 20);  // the crop window
+  EXPECT_EQ(img.height(), 10);
+
+  const RunResult info = run_kiln("info " + data + "unsupported.pbrt");
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("warning: " + data + "unsupported.pbrt: line 15 (Shape \"disk\")"), std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"disk\""), std::string::npos) << info.output;
+  const RunResult all = run_kiln("info " + data + "all_directives.pbrt");
+  EXPECT_NE(all.output.find("infinite 1"), std::string::npos) << all.output;
+
+  const RunResult bvh = run_kiln("check-bvh " + data + "instancing.pbrt --rays 20000");
+  EXPECT_EQ(bvh.exit_code, 0) << bvh.output;
+  EXPECT_NE(bvh.output.find("\"passed\": true"), std::string::npos) << bvh.output;
+  const RunResult prof = run_kiln("profile " + data + "furnace_sphere.pbrt --spp 1 --subdivide 2 --json");
+  EXPECT_EQ(prof.exit_code, 0) << prof.output;
+  EXPECT_NE(prof.output.find("\"triangles\": 128"), std::string::npos) << prof.output;
 }
 
 TEST(Cli, InfoSucceedsOnEveryCourseScene) {

@@ -156,6 +156,44 @@ TEST(Furnace, ZeroSpecularCourseMaterialsKeepTheirAlbedo) {
   }
 }
 
+// A convex Lambertian sphere under a constant infinite light L sees the sky over its whole upper hemisphere and
+// nothing else, so every point of it sends a * L (one bounce; later bounces escape). Every strategy must find it:
+// NEE through the light's own sampling, BRDF / cosine / uniform sampling through rays that leave the scene, MIS
+// through both weighted by the light's direction density.
+TEST(Furnace, ConvexSphereUnderAConstantInfiniteLight) {
+  constexpr float kAlbedo = 0.6f;
+  const Rgb sky(0.5f, 1.0f, 2.0f);
+  SceneDesc s;
+  s.source_path = "sky.test";
+  BrdfDesc lambert;
+  lambert.kind = BrdfKind::Lambert;
+  s.brdfs.push_back(lambert);
+  MaterialDesc m;
+  m.brdf = 0;
+  m.diffuse = Rgb(kAlbedo);
+  s.materials.push_back(m);
+  SphereDesc ball;
+  ball.name = "ball";
+  ball.radius = 1.0f;
+  ball.material = 0;
+  s.spheres.push_back(ball);
+  s.infinite_lights.push_back({sky});
+  CameraDesc cam;
+  cam.position = {0, 0, 3};
+  cam.use_fov = true;
+  cam.fov_y_deg = 20;  // the ball fills the view
+  cam.width = cam.height = 8;
+  s.cameras.push_back(cam);
+  const auto world = build_world(s, {});
+  ASSERT_EQ(world->infinite_lights.size(), 1u);
+  for (const char* name : {"uniform", "cosine", "brdf", "nee", "mis", "mis+rr"}) {
+    PathSettings p = kiln_strategy(name, PathSettings{}, "test");
+    p.rr_min_depth = 0;
+    const Estimate e = estimate_mean(*world, p, s.cameras[0], 100000);
+    EXPECT_NEAR(e.mean, kAlbedo * sky.r, 4.5 * e.stderr_ + 1e-5) << name << ": " << e.mean << " +- " << e.stderr_;
+  }
+}
+
 // pbrt-style unit case: emission 1 - a makes the exact answer 1 for any albedo.
 TEST(Furnace, UnitRadiance) {
   const SceneDesc scene = furnace_box(0.7f, Rgb(0.3f));

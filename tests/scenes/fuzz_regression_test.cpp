@@ -93,7 +93,7 @@ TEST(FuzzRegression, EveryFolderNamesALoader) {
     for (const auto& entry : fs::directory_iterator(kFuzzDir / kind, ec)) {
       if (entry.is_directory()) {
         EXPECT_TRUE(fuzz::loader_from_name(entry.path().filename().string()))
-            << entry.path() << " is not named after a loader (ply, obj, xml, json)";
+            << entry.path() << " is not named after a loader (ply, obj, xml, json, pbrt)";
       } else {
         ADD_FAILURE() << entry.path() << ": inputs belong in a per-loader subfolder";
       }

@@ -1,0 +1,1007 @@
+#include "scenes/pbrt_loader.h"
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "core/error.h"
+#include "scenes/gzip_file.h"
+#include "scenes/parse_util.h"
+#include "scenes/pbrt_camera.h"
+#include "scenes/pbrt_diagnostics.h"
+#include "scenes/pbrt_params.h"
+#include "scenes/pbrt_shapes.h"
+#include "scenes/pbrt_tokenizer.h"
+
+namespace kiln {
+namespace {
+
+namespace fs = std::filesystem;
+
+// pbrt-v4's defaults.
+constexpr float kDefaultReflectance = 0.5f;  // "diffuse" reflectance, also pbrt's default material
+constexpr float kDefaultDielectricEta = 1.5f;
+constexpr float kDefaultSpotConeAngle = 30.0f, kDefaultSpotConeDelta = 5.0f;
+constexpr float kDefaultCoatThickness = 0.01f;
+constexpr int kDefaultCoatMaxDepth = 10;
+
+using TransformPair = std::array<Transform, 2>;  // the transforms at shutter open and close (ActiveTransform)
+
+struct AreaLight {
+  Rgb radiance;
+  bool two_sided = false;
+};
+
+// Attribute "shape" / "light" / "material" / "texture" defaults in effect.
+struct AttributeDefaults {
+  std::shared_ptr<const PbrtParams> shape, light, material, texture;
+};
+
+enum class BlockKind { Attribute, Object, Import };
+
+struct GraphicsState {
+  TransformPair ctm;
+  bool reverse_orientation = false;
+  int material = -1;  // index into SceneDesc::materials; -1: pbrt's default material
+  std::optional<AreaLight> area_light;
+  AttributeDefaults defaults;
+};
+
+struct Block {
+  GraphicsState saved;
+  BlockKind kind = BlockKind::Attribute;
+  std::string file;
+  int line = 0;
+};
+
+struct ObjectDef {
+  std::vector<int> meshes;  // into SceneDesc::meshes (invisible prototypes)
+  std::vector<SphereDesc> spheres;
+};
+
+struct TextureDef {
+  bool is_float = false;
+  std::string cls;
+  std::optional<float> value;  // constant float texture
+  std::optional<Rgb> rgb;      // constant spectrum texture
+};
+
+struct OpenFile {
+  std::unique_ptr<PbrtCursor> cursor;
+  std::string dir;
+  int included_at = 0;                  // line of the Include / Import in the parent file
+  std::optional<size_t> import_blocks;  // Import: the block depth to return to when the file ends
+};
+
+// Built piecewise: GCC 12 reports a false -Wrestrict on "\"" + s.
+std::string in_quotes(std::string_view s) {
+  std::string r;
+  r.reserve(s.size() + 2);
+  r += '"';
+  r += s;
+  r += '"';
+  return r;
+}
+
+bool same(const Transform& a, const Transform& b) { return a.matrix() == b.matrix(); }
+
+bool finite_transform(const Transform& t) {
+  for (const auto* m : {&t.matrix(), &t.inverse_matrix()})
+    for (const auto& row : m->m)
+      for (float x : row)
+        if (!std::isfinite(x)) return false;
+  return true;
+}
+
+class PbrtParser {
+ public:
+  explicit PbrtParser(const std::string& path) : root_path_(path) {
+    root_dir_ = fs::path(path).parent_path().string();
+    if (root_dir_.empty()) root_dir_ = ".";
+    scene_.source_path = path;
+    scene_.format = "pbrt-v4";
+    scene_.rules = SceneRules::Kiln;
+    scene_.max_recursion_depth = kPbrtDefaultMaxDepth;
+    // Directives the file leaves out still name the scene in messages about their defaults.
+    camera_.camera = PbrtParams(path, "Camera", 0);
+    camera_.film = PbrtParams(path, "Film", 0);
+    camera_.sampler = PbrtParams(path, "Sampler", 0);
+    camera_.filter = PbrtParams(path, "PixelFilter", 0);
+  }
+
+  SceneDesc run(std::string text) {
+    push_file(std::move(text), root_path_, root_dir_, 0, std::nullopt);
+    try {
+      loop();
+      finish();
+    } catch (const Error& e) {
+      // Errors inside included files also say where the inclusion happened.
+      if (include_trace_.empty()) throw;
+      throw Error(std::string(e.what()) + " (" + include_trace_ + ")");
+    }
+    return std::move(scene_);
+  }
+
+ private:
+  // ---- files and tokens ----
+
+  void push_file(std::string text, const std::string& path, const std::string& dir, int included_at,
+                 std::optional<size_t> import_blocks) {
+    if (files_.size() >= size_t(kPbrtMaxIncludeDepth))
+      fail(
+          included_at, "Include",
+          "includes nest deeper than " + std::to_string(kPbrtMaxIncludeDepth) + " files (does a file include itself?)");
+    OpenFile f;
+    f.cursor = std::make_unique<PbrtCursor>(PbrtTokenizer(std::move(text), path));
+    f.dir = dir;
+    f.included_at = included_at;
+    f.import_blocks = import_blocks;
+    files_.push_back(std::move(f));
+  }
+
+  void loop() {
+    while (!files_.empty()) {
+      PbrtCursor& cur = *files_.back().cursor;
+      const auto t = cur.next();
+      if (!t) {
+        close_file();
+        continue;
+      }
+      update_trace();
+      if (t->kind != PbrtTokenKind::Word) fail(t->line, "", "expected a directive, got " + pbrt_describe(*t));
+      directive(cur, *t);
+    }
+  }
+
+  void update_trace() {
+    include_trace_.clear();
+    for (size_t i = files_.size(); i-- > 1;)
+      include_trace_ += (include_trace_.empty() ? "included from " : ", from ") + files_[i - 1].cursor->file() +
+                        ": line " + std::to_string(files_[i].included_at);
+  }
+
+  void close_file() {
+    OpenFile f = std::move(files_.back());
+    files_.pop_back();
+    if (files_.empty()) root_end_line_ = f.cursor->line();
+    if (f.import_blocks) {
+      // The imported file's attribute changes end with it.
+      while (blocks_.size() > *f.import_blocks + 1) {
+        diag_.warn(f.cursor->file(), blocks_.back().line, "AttributeBegin",
+                   "is not closed by the end of the imported file");
+        gs_ = blocks_.back().saved;
+        blocks_.pop_back();
+      }
+      gs_ = blocks_.back().saved;
+      blocks_.pop_back();
+    }
+  }
+
+  const std::string& file() const { return files_.back().cursor->file(); }
+
+  std::string location(int line, const std::string& context) const {
+    std::string s = "line " + std::to_string(line);
+    if (!context.empty()) s += " (" + context + ")";
+    return s;
+  }
+  [[noreturn]] void fail(int line, const std::string& context, const std::string& message) const {
+    throw Error(files_.empty() ? root_path_ : file(), location(line, context), message);
+  }
+  void warn(int line, const std::string& context, const std::string& message) {
+    diag_.warn(file(), line, context, message);
+  }
+
+  PbrtToken next_token(PbrtCursor& cur, int line, const std::string& directive) {
+    const auto t = cur.next();
+    if (!t) fail(line, directive, "the file ends inside the directive");
+    return *t;
+  }
+
+  float read_number(PbrtCursor& cur, int line, const std::string& directive) {
+    const PbrtToken t = next_token(cur, line, directive);
+    const auto v = t.kind == PbrtTokenKind::Word ? to_float(t.text) : std::nullopt;
+    if (!v) fail(t.line, directive, "expected a finite number, got " + pbrt_describe(t));
+    return *v;
+  }
+
+  template <size_t N>
+  std::array<float, N> read_numbers(PbrtCursor& cur, int line, const std::string& directive, bool bracketed) {
+    if (bracketed && next_token(cur, line, directive).kind != PbrtTokenKind::OpenBracket)
+      fail(line, directive, "expected '[' and " + std::to_string(N) + " numbers");
+    std::array<float, N> v{};
+    for (float& x : v) x = read_number(cur, line, directive);
+    if (bracketed) {
+      const PbrtToken t = next_token(cur, line, directive);
+      if (t.kind != PbrtTokenKind::CloseBracket)
+        fail(t.line, directive, "expected ']' after " + std::to_string(N) + " numbers, got " + pbrt_describe(t));
+    }
+    return v;
+  }
+
+  std::string read_string(PbrtCursor& cur, int line, const std::string& directive) {
+    const PbrtToken t = next_token(cur, line, directive);
+    if (t.kind != PbrtTokenKind::String) fail(t.line, directive, "expected a quoted name, got " + pbrt_describe(t));
+    return pbrt_unescape(t, file());
+  }
+
+  PbrtParams read_params(PbrtCursor& cur, int line, const std::string& context,
+                         const std::shared_ptr<const PbrtParams>& defaults = nullptr) {
+    PbrtParams ps(file(), context, line, files_.back().dir);
+    ps.set_defaults(defaults.get());
+    ps.parse(cur);
+    return ps;
+  }
+
+  // A file named in the scene: relative to the including file's folder, else to the main scene's folder.
+  std::string resolve(const std::string& name, int line, const std::string& context) const {
+    if (name.empty()) fail(line, context, "the file name is empty");
+    const fs::path p(name);
+    if (p.is_absolute()) return p.string();
+    std::error_code ec;
+    const fs::path local = fs::path(files_.back().dir) / p;
+    if (fs::is_regular_file(local, ec)) return local.lexically_normal().string();
+    const fs::path from_root = fs::path(root_dir_) / p;
+    if (fs::is_regular_file(from_root, ec)) return from_root.lexically_normal().string();
+    fail(line, context,
+         "cannot find " + in_quotes(name) + " (looked for " + local.lexically_normal().string() +
+             (local == from_root ? "" : " and " + from_root.lexically_normal().string()) + ")");
+  }
+
+  // ---- directives ----
+
+  void directive(PbrtCursor& cur, const PbrtToken& t) {
+    const std::string d(t.text);
+    const int line = t.line;
+    if (d == "AttributeBegin") return attribute_begin(line, BlockKind::Attribute);
+    if (d == "AttributeEnd") return attribute_end(line, BlockKind::Attribute, "AttributeEnd");
+    if (d == "TransformBegin" || d == "TransformEnd") {
+      if (!warned_transform_block_)
+        warn(line, d, "TransformBegin/End are deprecated in pbrt-v4 and read as AttributeBegin/End");
+      warned_transform_block_ = true;
+      if (d == "TransformBegin") return attribute_begin(line, BlockKind::Attribute);
+      return attribute_end(line, BlockKind::Attribute, d);
+    }
+    if (d == "Translate") {
+      const auto v = read_numbers<3>(cur, line, d, false);
+      return apply(line, d, [&] { return Transform::translate({v[0], v[1], v[2]}); });
+    }
+    if (d == "Scale") {
+      const auto v = read_numbers<3>(cur, line, d, false);
+      return apply(line, d, [&] { return Transform::scale({v[0], v[1], v[2]}); });
+    }
+    if (d == "Rotate") {
+      const auto v = read_numbers<4>(cur, line, d, false);
+      return apply(line, d, [&] { return Transform::rotate(v[0], {v[1], v[2], v[3]}); });
+    }
+    if (d == "LookAt") {
+      const auto v = read_numbers<9>(cur, line, d, false);
+      return apply(line, d, [&] { return look_at({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, line); });
+    }
+    if (d == "Transform" || d == "ConcatTransform") {
+      const auto v = read_numbers<16>(cur, line, d, true);
+      Mat4 m;
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) m.m[r][c] = v[size_t(c * 4 + r)];  // the file lists the matrix by columns
+      const Transform x = checked(line, d, [&] { return Transform::from_matrix(m); });
+      if (d == "Transform") return set_ctm(line, d, {x, x});
+      return apply(line, d, [&] { return x; });
+    }
+    if (d == "Identity") return set_ctm(line, d, {Transform(), Transform()});
+    if (d == "CoordinateSystem") {
+      coord_systems_[read_string(cur, line, d)] = gs_.ctm;
+      return;
+    }
+    if (d == "CoordSysTransform") {
+      const std::string name = read_string(cur, line, d);
+      const auto it = coord_systems_.find(name);
+      if (it == coord_systems_.end())
+        return warn(line, d, "no coordinate system named " + in_quotes(name) + "; ignored");
+      gs_.ctm = it->second;
+      return;
+    }
+    if (d == "ActiveTransform") {
+      const PbrtToken a = next_token(cur, line, d);
+      if (a.is_word("All"))
+        active_ = {true, true};
+      else if (a.is_word("StartTime"))
+        active_ = {true, false};
+      else if (a.is_word("EndTime"))
+        active_ = {false, true};
+      else
+        fail(a.line, d, "expected All, StartTime or EndTime, got " + pbrt_describe(a));
+      return;
+    }
+    if (d == "TransformTimes") {
+      read_numbers<2>(cur, line, d, false);
+      return warn(line, d, "shutter times are ignored (Kiln renders no motion blur)");
+    }
+    if (d == "ReverseOrientation") {
+      gs_.reverse_orientation = !gs_.reverse_orientation;
+      return;
+    }
+    if (d == "Include" || d == "Import") return include(cur, line, d);
+    if (d == "Camera" || d == "Film" || d == "Sampler" || d == "PixelFilter") return option(cur, line, d);
+    if (d == "Integrator") return integrator(cur, line);
+    if (d == "Accelerator") {
+      const std::string type = read_string(cur, line, d);
+      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type));
+      require_options(line, d);
+      for (const PbrtParam& p : ps.params()) p.used = true;
+      return warn(line, d, "ignored: Kiln traces rays through Embree (or its own BVH, --accel bvh)");
+    }
+    if (d == "ColorSpace") {
+      const std::string name = read_string(cur, line, d);
+      if (name != "srgb") {
+        warn(line, d, "colour space " + in_quotes(name) + " is not supported; RGB values are read as sRGB");
+        diag_.unsupported("pbrt colour spaces other than srgb");
+      }
+      return;
+    }
+    if (d == "Option") {
+      const std::string name = read_string(cur, line, d);
+      next_token(cur, line, d);
+      return warn(line, d, "option " + in_quotes(name) + " is ignored");
+    }
+    if (d == "WorldBegin") return world_begin(line);
+    if (d == "WorldEnd") {
+      require_world(line, d);
+      return warn(line, d, "WorldEnd is pbrt-v3 syntax (pbrt-v4 ends the world at the end of the file); ignored");
+    }
+    if (d == "Attribute") return attribute(cur, line);
+    if (d == "Shape") return shape(cur, line);
+    if (d == "Material") {
+      const std::string type = read_string(cur, line, d);
+      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type), gs_.defaults.material);
+      require_world(line, d);
+      gs_.material = make_material(type, ps);
+      return;
+    }
+    if (d == "MakeNamedMaterial") return make_named_material(cur, line);
+    if (d == "NamedMaterial") {
+      const std::string name = read_string(cur, line, d);
+      require_world(line, d);
+      const auto it = named_materials_.find(name);
+      if (it == named_materials_.end())
+        fail(line, d, "no material named " + in_quotes(name) + " (MakeNamedMaterial defines them)");
+      gs_.material = it->second;
+      return;
+    }
+    if (d == "Texture") return texture(cur, line);
+    if (d == "LightSource") return light_source(cur, line);
+    if (d == "AreaLightSource") return area_light_source(cur, line);
+    if (d == "ObjectBegin") {
+      const std::string name = read_string(cur, line, d);
+      require_world(line, d);
+      if (current_object_) fail(line, d, "ObjectBegin inside the definition of object " + in_quotes(*current_object_));
+      if (objects_.count(name)) fail(line, d, "object " + in_quotes(name) + " is defined twice");
+      attribute_begin(line, BlockKind::Object);
+      current_object_ = name;
+      objects_[name];
+      return;
+    }
+    if (d == "ObjectEnd") {
+      if (!current_object_) fail(line, d, "ObjectEnd without ObjectBegin");
+      attribute_end(line, BlockKind::Object, d);
+      current_object_.reset();
+      return;
+    }
+    if (d == "ObjectInstance") return object_instance(read_string(cur, line, d), line);
+    if (d == "MakeNamedMedium") {
+      const std::string name = read_string(cur, line, d);
+      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name));
+      for (const PbrtParam& p : ps.params()) p.used = true;
+      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)");
+      return warn(line, d, "participating media are not rendered; medium " + in_quotes(name) + " ignored");
+    }
+    if (d == "MediumInterface") {
+      read_string(cur, line, d);
+      if (const auto second = cur.peek(); second && second->kind == PbrtTokenKind::String) cur.next();
+      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)");
+      return warn(line, d, "participating media are not rendered; ignored");
+    }
+    fail(line, "", "unknown directive '" + std::string(t.text.substr(0, 40)) + "'");
+  }
+
+  // ---- blocks ----
+
+  void require_world(int line, const std::string& d) const {
+    if (!world_) fail(line, d, d + " before WorldBegin: shapes, lights and materials belong in the world block");
+  }
+  void require_options(int line, const std::string& d) const {
+    if (world_) fail(line, d, d + " after WorldBegin: rendering options must come before the world block");
+  }
+
+  void attribute_begin(int line, BlockKind kind) { blocks_.push_back(Block{gs_, kind, file(), line}); }
+
+  void attribute_end(int line, BlockKind kind, const std::string& d) {
+    const bool import_floor =
+        !files_.empty() && files_.back().import_blocks && blocks_.size() <= *files_.back().import_blocks + 1;
+    if (blocks_.empty() || import_floor)
+      fail(line, d, d + " without a matching " + (kind == BlockKind::Object ? "ObjectBegin" : "AttributeBegin"));
+    const Block& b = blocks_.back();
+    if (b.kind != kind)
+      fail(line, d,
+           d + " closes the " + (b.kind == BlockKind::Object ? "ObjectBegin" : "AttributeBegin") + " of " + b.file +
+               ": line " + std::to_string(b.line));
+    gs_ = b.saved;
+    blocks_.pop_back();
+  }
+
+  void attribute(PbrtCursor& cur, int line) {
+    const std::string target = read_string(cur, line, "Attribute");
+    PbrtParams ps = read_params(cur, line, "Attribute " + in_quotes(target));
+    std::shared_ptr<const PbrtParams>* slot = nullptr;
+    if (target == "shape")
+      slot = &gs_.defaults.shape;
+    else if (target == "light")
+      slot = &gs_.defaults.light;
+    else if (target == "material")
+      slot = &gs_.defaults.material;
+    else if (target == "texture")
+      slot = &gs_.defaults.texture;
+    else if (target == "medium") {
+      for (const PbrtParam& p : ps.params()) p.used = true;
+      return warn(line, "Attribute", "participating media are not rendered; ignored");
+    } else {
+      fail(line, "Attribute", "unknown target " + in_quotes(target) + " (shape, light, material, medium, texture)");
+    }
+    // The new values first, then the earlier defaults they do not replace.
+    auto merged = std::make_shared<PbrtParams>(ps.file(), ps.context(), line);
+    for (const PbrtParam& p : ps.params()) {
+      p.used = true;
+      merged->add(p);
+    }
+    if (*slot)
+      for (const PbrtParam& p : (*slot)->params())
+        if (!ps.has(p.name)) merged->add(p);
+    for (const PbrtParam& p : merged->params()) p.used = false;
+    *slot = merged;
+  }
+
+  // ---- transforms ----
+
+  template <typename F>
+  Transform checked(int line, const std::string& d, F&& make) {
+    Transform t;
+    try {
+      t = make();
+    } catch (const Error& e) {
+      fail(line, d, e.what());
+    }
+    if (!finite_transform(t)) fail(line, d, "the transformation is not finite in single precision");
+    return t;
+  }
+
+  template <typename F>
+  void apply(int line, const std::string& d, F&& make) {
+    const Transform x = checked(line, d, make);
+    for (int i = 0; i < 2; ++i)
+      if (active_[size_t(i)]) {
+        gs_.ctm[size_t(i)] = gs_.ctm[size_t(i)] * x;
+        if (!finite_transform(gs_.ctm[size_t(i)]))
+          fail(line, d, "the accumulated transformation overflows single precision");
+      }
+  }
+
+  void set_ctm(int, const std::string&, const TransformPair& t) {
+    for (int i = 0; i < 2; ++i)
+      if (active_[size_t(i)]) gs_.ctm[size_t(i)] = t[size_t(i)];
+  }
+
+  // pbrt's LookAt: the camera-from-world transform of an eye at `eye` looking at `look` (camera +z forward, +y up,
+  // +x = up x forward).
+  Transform look_at(Vec3f eye, Vec3f look, Vec3f up, int line) {
+    const Vec3f dir = look - eye;
+    if (!(length(dir) > 0.0f)) fail(line, "LookAt", "the eye and the look-at point coincide");
+    const Vec3f f = normalize(dir);
+    if (!(length(up) > 0.0f)) fail(line, "LookAt", "the up vector is zero");
+    const Vec3f r0 = cross(normalize(up), f);
+    if (!(length(r0) > 1e-6f)) fail(line, "LookAt", "the up vector is parallel to the viewing direction");
+    const Vec3f r = normalize(r0);
+    const Vec3f u = cross(f, r);
+    Mat4 world_from_camera = Mat4::identity();
+    for (int i = 0; i < 3; ++i) {
+      world_from_camera.m[size_t(i)][0] = r[i];
+      world_from_camera.m[size_t(i)][1] = u[i];
+      world_from_camera.m[size_t(i)][2] = f[i];
+      world_from_camera.m[size_t(i)][3] = eye[i];
+    }
+    return Transform::from_matrix(world_from_camera).inverse();
+  }
+
+  // ---- files ----
+
+  void include(PbrtCursor& cur, int line, const std::string& d) {
+    const std::string name = read_string(cur, line, d);
+    const bool import = d == "Import";
+    if (import) require_world(line, d);
+    const std::string path = resolve(name, line, d);
+    std::string text;
+    try {
+      text = read_file_maybe_gzip(path);
+    } catch (const Error& e) {
+      fail(line, d, std::string("cannot read ") + in_quotes(name) + ": " + e.what());
+    }
+    std::optional<size_t> import_blocks;
+    if (import) {
+      import_blocks = blocks_.size();
+      attribute_begin(line, BlockKind::Import);
+    }
+    std::string dir = fs::path(path).parent_path().string();
+    push_file(std::move(text), path, dir.empty() ? "." : dir, line, import_blocks);
+  }
+
+  // ---- rendering options ----
+
+  void option(PbrtCursor& cur, int line, const std::string& d) {
+    const std::string type = read_string(cur, line, d);
+    PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type));
+    require_options(line, d);
+    if (d == "Camera") {
+      if (have_camera_) warn(line, d, "a second Camera replaces the first");
+      have_camera_ = true;
+      camera_.camera_type = type;
+      camera_.camera = std::move(ps);
+      camera_.camera_from_world = gs_.ctm[0];
+      if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, d);
+      coord_systems_["camera"] = {gs_.ctm[0].inverse(), gs_.ctm[1].inverse()};
+    } else if (d == "Film") {
+      camera_.film_type = type;
+      camera_.film = std::move(ps);
+    } else if (d == "Sampler") {
+      camera_.sampler_type = type;
+      camera_.sampler = std::move(ps);
+      camera_.has_sampler = true;
+    } else {
+      camera_.filter_type = type;
+      camera_.filter = std::move(ps);
+      camera_.has_filter = true;
+    }
+  }
+
+  void integrator(PbrtCursor& cur, int line) {
+    const std::string type = read_string(cur, line, "Integrator");
+    PbrtParams ps = read_params(cur, line, "Integrator " + in_quotes(type));
+    require_options(line, "Integrator");
+    if (type != "path" && type != "volpath") {
+      diag_.warn(ps, "integrator " + in_quotes(type) + " is rendered with Kiln's path tracer (MIS, roulette)");
+      diag_.unsupported("pbrt integrator " + in_quotes(type) + " (Kiln's path tracer renders it)");
+    }
+    const int depth = ps.get_int("maxdepth", kPbrtDefaultMaxDepth);
+    if (depth < 0) ps.fail(line, "\"maxdepth\" must not be negative");
+    scene_.max_recursion_depth = depth;
+    if (ps.has("regularize") && ps.get_bool("regularize", false))
+      diag_.warn(ps, "\"regularize\" is ignored (Kiln does not regularize near-specular paths)");
+    if (const auto ls = ps.find_string("lightsampler"); ls && *ls != "power")
+      diag_.warn(ps, "light sampler " + in_quotes(*ls) + ": Kiln chooses lights in proportion to their power");
+    diag_.report_unused(ps);
+  }
+
+  void world_begin(int line) {
+    if (world_) fail(line, "WorldBegin", "WorldBegin appears twice");
+    CameraDesc c = make_pbrt_camera(camera_, diag_);
+    for (const PbrtParams* ps : {&camera_.camera, &camera_.film, &camera_.sampler, &camera_.filter})
+      diag_.report_unused(*ps);
+    scene_.cameras.push_back(c);
+    world_ = true;
+    gs_.ctm = {Transform(), Transform()};
+    coord_systems_["world"] = gs_.ctm;
+  }
+
+  void motion_blur(int line, const std::string& d) {
+    warn(line, d, "the transform moves during the shutter interval; Kiln renders it at the start (no motion blur)");
+    diag_.unsupported("motion blur (pbrt ActiveTransform)");
+  }
+
+  void finish() {
+    const std::string end = "line " + std::to_string(root_end_line_);
+    if (current_object_)
+      throw Error(root_path_, end,
+                  "the file ends inside ObjectBegin " + in_quotes(*current_object_) + " (no ObjectEnd)");
+    if (!world_)
+      throw Error(root_path_, end, "missing WorldBegin: the file ends before the world block (no shapes or lights)");
+    for (const Block& b : blocks_)
+      diag_.warn(b.file, b.line, "AttributeBegin", "has no matching AttributeEnd before the end of the scene");
+  }
+
+  // ---- shapes ----
+
+  void shape(PbrtCursor& cur, int line) {
+    const std::string type = read_string(cur, line, "Shape");
+    PbrtParams ps = read_params(cur, line, "Shape " + in_quotes(type), gs_.defaults.shape);
+    require_world(line, "Shape");
+    const PbrtShapeContext ctx{diag_, [&](const std::string& name, int l) { return resolve(name, l, ps.context()); }};
+    PbrtShape s = make_pbrt_shape(type, ps, ctx);
+    diag_.report_unused(ps);
+    if (s.empty()) return;
+    if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "Shape");
+    const Transform& to_world = gs_.ctm[0];
+    const bool flipped = gs_.reverse_orientation != to_world.swaps_handedness();
+    std::optional<AreaLight> light = gs_.area_light;
+    if (light && current_object_) {
+      warn(line, ps.context(), "area lights inside ObjectBegin are not supported (pbrt-v4 ignores them too)");
+      light.reset();
+    }
+    const int material = current_material();
+    if (s.mesh) {
+      MeshDesc& m = *s.mesh;
+      m.material = material;
+      m.to_world = to_world;
+      orient(m, flipped, gs_.reverse_orientation);
+      if (light) {
+        m.emission = light->radiance;
+        m.two_sided_emission = light->two_sided;
+      }
+      if (current_object_) {
+        m.visible = false;
+        objects_[*current_object_].meshes.push_back(int(scene_.meshes.size()));
+      }
+      scene_.meshes.push_back(std::move(m));
+      return;
+    }
+    SphereDesc sp = *s.sphere;
+    sp.material = material;
+    sp.to_world = to_world;
+    if (light) {
+      if (flipped) {
+        warn(line, ps.context(),
+             "a sphere light facing inwards (ReverseOrientation) is not supported; it does not emit");
+        diag_.unsupported("inward-facing sphere lights");
+      } else {
+        sp.emission = light->radiance;
+        if (light->two_sided)
+          warn(line, ps.context(), "a two-sided sphere light emits only outwards in Kiln (its inside is dark)");
+      }
+    }
+    if (current_object_)
+      objects_[*current_object_].spheres.push_back(sp);
+    else
+      scene_.spheres.push_back(sp);
+  }
+
+  // pbrt's emitting (and refracting) side: the side of the shading normals "N" when the mesh has them (negated by
+  // ReverseOrientation), else the winding order's side flipped by ReverseOrientation and by a mirroring transform.
+  // Kiln's side is always the world-space winding, so triangles are re-wound to match.
+  static void orient(MeshDesc& m, bool flipped, bool reverse) {
+    const size_t tris = m.indices.size() / 3;
+    if (m.normals.empty()) {
+      if (flipped)
+        for (size_t t = 0; t < tris; ++t) std::swap(m.indices[3 * t + 1], m.indices[3 * t + 2]);
+      return;
+    }
+    if (reverse)
+      for (Vec3f& n : m.normals) n = -n;
+    for (size_t t = 0; t < tris; ++t) {
+      uint32_t* v = &m.indices[3 * t];
+      const Vec3f p0 = m.to_world.point(m.positions[v[0]]), p1 = m.to_world.point(m.positions[v[1]]),
+                  p2 = m.to_world.point(m.positions[v[2]]);
+      const Vec3f n = m.to_world.normal(m.normals[v[0]] + m.normals[v[1]] + m.normals[v[2]]);
+      if (dot(cross(p1 - p0, p2 - p0), n) < 0.0f) std::swap(v[1], v[2]);
+    }
+  }
+
+  void object_instance(const std::string& name, int line) {
+    require_world(line, "ObjectInstance");
+    if (current_object_)
+      fail(line, "ObjectInstance", "ObjectInstance inside the definition of object " + in_quotes(*current_object_));
+    const auto it = objects_.find(name);
+    if (it == objects_.end())
+      fail(line, "ObjectInstance", "no object named " + in_quotes(name) + " (ObjectBegin defines them)");
+    if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "ObjectInstance");
+    const Transform& placement = gs_.ctm[0];
+    const std::string label = "ObjectInstance " + in_quotes(name) + " (" + fs::path(file()).filename().string() + ":" +
+                              std::to_string(line) + ")";
+    for (int mi : it->second.meshes) {
+      MeshDesc& base = scene_.meshes[size_t(mi)];
+      base.is_instance_base = true;
+      InstanceDesc inst;
+      inst.name = label;
+      inst.base_mesh = mi;
+      inst.to_world = placement * base.to_world;
+      if (!finite_transform(inst.to_world))
+        fail(line, "ObjectInstance", "the instance transform overflows single precision");
+      inst.material = base.material;
+      scene_.instances.push_back(inst);
+    }
+    for (SphereDesc s : it->second.spheres) {
+      s.to_world = placement * s.to_world;
+      s.name = label + " " + s.name;
+      scene_.spheres.push_back(s);
+    }
+  }
+
+  // ---- materials and textures ----
+
+  int current_material() {
+    if (gs_.material >= 0) return gs_.material;
+    if (default_material_ < 0) {
+      PbrtParams none(file(), "default material", 0);
+      default_material_ = make_material("diffuse", none);
+    }
+    return default_material_;
+  }
+
+  // A float parameter that may name a texture: constant textures are read, others warned (the default is used).
+  float float_param(const PbrtParams& ps, const std::string& name, float def) {
+    if (const auto tex = ps.find_texture(name)) {
+      const TextureDef& t = texture_def(ps, *tex);
+      if (t.is_float && t.value) return *t.value;
+      texture_not_rendered(ps, name, *tex, t);
+      return def;
+    }
+    return ps.get_float(name, def);
+  }
+
+  Rgb spectrum_param(const PbrtParams& ps, const std::string& name, SpectrumUse use, Rgb def) {
+    if (const auto tex = ps.find_texture(name)) {
+      const TextureDef& t = texture_def(ps, *tex);
+      if (!t.is_float && t.rgb) {
+        if (use == SpectrumUse::Albedo && t.rgb->max_component() > 1.0f) {
+          diag_.warn(ps, "texture " + in_quotes(*tex) + " used as " + in_quotes(name) + " exceeds 1; clamped");
+          return Rgb(std::min(t.rgb->r, 1.0f), std::min(t.rgb->g, 1.0f), std::min(t.rgb->b, 1.0f));
+        }
+        return *t.rgb;
+      }
+      texture_not_rendered(ps, name, *tex, t);
+      return def;
+    }
+    return ps.find_spectrum(name, use).value_or(def);
+  }
+
+  const TextureDef& texture_def(const PbrtParams& ps, const std::string& name) const {
+    const auto it = textures_.find(name);
+    if (it == textures_.end()) ps.fail(ps.line(), "no texture named " + in_quotes(name) + " (Texture defines them)");
+    return it->second;
+  }
+
+  void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex,
+                            const TextureDef& t) {
+    diag_.warn(ps, in_quotes(param) + " uses texture " + in_quotes(tex) + " (" + in_quotes(t.cls) +
+                       (t.is_float ? ", float" : ", spectrum") + "), which Kiln does not render; the default is used");
+    diag_.unsupported("textures");
+  }
+
+  void texture(PbrtCursor& cur, int line) {
+    const std::string name = read_string(cur, line, "Texture");
+    const std::string type = read_string(cur, line, "Texture");
+    const std::string cls = read_string(cur, line, "Texture");
+    PbrtParams ps = read_params(cur, line, "Texture " + in_quotes(name), gs_.defaults.texture);
+    require_world(line, "Texture");
+    if (type != "float" && type != "spectrum")
+      fail(line, ps.context(), "texture type must be \"float\" or \"spectrum\", got " + in_quotes(type));
+    TextureDef t;
+    t.is_float = type == "float";
+    t.cls = cls;
+    if (cls == "constant") {
+      if (t.is_float)
+        t.value = ps.get_float("value", 1.0f);
+      else
+        t.rgb = ps.find_spectrum("value", SpectrumUse::Unbounded).value_or(Rgb(1.0f));
+      diag_.report_unused(ps);
+    } else {
+      for (const PbrtParam& p : ps.params()) p.used = true;
+      warn(line, ps.context(),
+           "texture class " + in_quotes(cls) + " is not rendered; parameters that use it keep their defaults");
+      diag_.unsupported("textures");
+    }
+    textures_[name] = t;
+  }
+
+  void read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm) {
+    const float r = float_param(ps, "roughness", 0.0f);
+    pm.uroughness = ps.has("uroughness") ? float_param(ps, "uroughness", r) : r;
+    pm.vroughness = ps.has("vroughness") ? float_param(ps, "vroughness", r) : r;
+    if (pm.uroughness < 0.0f || pm.vroughness < 0.0f) ps.fail(ps.line(), "roughness must not be negative");
+    pm.remap_roughness = ps.get_bool("remaproughness", true);
+  }
+
+  float interface_eta(const PbrtParams& ps) {
+    bool spectral = false;
+    const float eta = ps.find_float_or_spectrum("eta", &spectral).value_or(kDefaultDielectricEta);
+    if (!(eta > 0.0f)) ps.fail(ps.line(), "\"eta\" must be positive");
+    if (spectral) {
+      diag_.warn(ps, "a spectral \"eta\" is rendered without dispersion (eta = " + std::to_string(eta) + ")");
+      diag_.unsupported("dispersion (spectral eta)");
+    }
+    return eta;
+  }
+
+  int make_material(const std::string& type, const PbrtParams& ps) {
+    MaterialDesc d;
+    d.id = int(scene_.materials.size()) + 1;
+    PbrtMaterialDesc pm;
+    if (ps.has("displacement")) {
+      ps.find_texture("displacement");
+      diag_.warn(ps, "displacement is not rendered");
+      diag_.unsupported("displacement (pbrt material \"displacement\")");
+    }
+    if (ps.has("normalmap")) {
+      ps.find_string("normalmap");
+      diag_.warn(ps, "normal maps are not rendered");
+      diag_.unsupported("normal maps");
+    }
+    if (type == "diffuse") {
+      pm.kind = PbrtMaterialKind::Diffuse;
+      pm.reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(kDefaultReflectance));
+    } else if (type == "coateddiffuse") {
+      pm.kind = PbrtMaterialKind::CoatedDiffuse;
+      pm.reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(kDefaultReflectance));
+      read_roughness(ps, pm);
+      pm.thickness = float_param(ps, "thickness", kDefaultCoatThickness);
+      pm.eta = interface_eta(ps);
+      pm.albedo = spectrum_param(ps, "albedo", SpectrumUse::Albedo, Rgb(0.0f));
+      pm.g = float_param(ps, "g", 0.0f);
+      pm.max_depth = ps.get_int("maxdepth", kDefaultCoatMaxDepth);
+      pm.n_samples = ps.get_int("nsamples", 1);
+      if (pm.thickness < 0.0f) ps.fail(ps.line(), "\"thickness\" must not be negative");
+      if (pm.g <= -1.0f || pm.g >= 1.0f) ps.fail(ps.line(), "\"g\" must lie in (-1, 1)");
+      if (pm.max_depth < 1 || pm.n_samples < 1) ps.fail(ps.line(), "\"maxdepth\" and \"nsamples\" must be at least 1");
+    } else if (type == "conductor") {
+      pm.kind = PbrtMaterialKind::Conductor;
+      if (ps.has("reflectance")) {
+        pm.conductor_reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(1.0f));
+      } else {
+        pm.conductor_eta = spectrum_param(ps, "eta", SpectrumUse::Unbounded, pm.conductor_eta);
+        pm.conductor_k = spectrum_param(ps, "k", SpectrumUse::Unbounded, pm.conductor_k);
+      }
+      read_roughness(ps, pm);
+    } else if (type == "dielectric") {
+      pm.kind = PbrtMaterialKind::Dielectric;
+      pm.eta = interface_eta(ps);
+      read_roughness(ps, pm);
+    } else if (type == "interface" || type.empty() || type == "none") {
+      pm.kind = PbrtMaterialKind::Interface;
+    } else {
+      diag_.warn(ps, "material " + in_quotes(type) + " is not supported; rendered as pbrt's default (diffuse, 0.5)");
+      diag_.unsupported("pbrt material " + in_quotes(type));
+      for (const PbrtParam& p : ps.params()) p.used = true;
+      pm.kind = PbrtMaterialKind::Diffuse;
+      pm.reflectance = Rgb(kDefaultReflectance);
+    }
+    d.pbrt = pm;
+    diag_.report_unused(ps);
+    scene_.materials.push_back(d);
+    return int(scene_.materials.size()) - 1;
+  }
+
+  void make_named_material(PbrtCursor& cur, int line) {
+    const std::string name = read_string(cur, line, "MakeNamedMaterial");
+    PbrtParams ps = read_params(cur, line, "MakeNamedMaterial " + in_quotes(name), gs_.defaults.material);
+    require_world(line, "MakeNamedMaterial");
+    if (named_materials_.count(name)) fail(line, ps.context(), "material " + in_quotes(name) + " is defined twice");
+    const auto type = ps.find_string("type");
+    if (!type) fail(line, ps.context(), "needs \"string type\" (diffuse, conductor, dielectric, coateddiffuse, ...)");
+    named_materials_[name] = make_material(*type, ps);
+  }
+
+  // ---- lights ----
+
+  Rgb light_spectrum(const PbrtParams& ps, const std::string& name) {
+    if (ps.find_texture(name)) ps.fail(ps.line(), in_quotes(name) + " of a light cannot be a texture");
+    return ps.find_spectrum(name, SpectrumUse::Illuminant).value_or(Rgb(1.0f));
+  }
+
+  void light_source(PbrtCursor& cur, int line) {
+    const std::string type = read_string(cur, line, "LightSource");
+    PbrtParams ps = read_params(cur, line, "LightSource " + in_quotes(type), gs_.defaults.light);
+    require_world(line, "LightSource");
+    if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "LightSource");
+    const Transform& xf = gs_.ctm[0];
+    const float scale = ps.get_float("scale", 1.0f);
+    if (type == "point") {
+      float s = scale;
+      if (const float power = ps.get_float("power", -1.0f); power > 0.0f) s *= power / (4.0f * kPi);
+      const Rgb i = light_spectrum(ps, "I") * s;
+      scene_.point_lights.push_back({xf.point(ps.find_point3("from").value_or(Vec3f(0.0f))), i});
+    } else if (type == "spot") {
+      const float cone = ps.get_float("coneangle", kDefaultSpotConeAngle);
+      const float delta = ps.get_float("conedeltaangle", kDefaultSpotConeDelta);
+      if (!(cone > 0.0f) || cone > 180.0f || delta < 0.0f)
+        ps.fail(line, "\"coneangle\" must lie in (0, 180] and \"conedeltaangle\" must not be negative");
+      const float inner = std::max(0.0f, cone - delta);
+      float s = scale;
+      if (const float power = ps.get_float("power", -1.0f); power > 0.0f) {
+        const float cos_end = std::cos(radians(cone)), cos_start = std::cos(radians(inner));
+        s *= power / (2.0f * kPi * ((1.0f - cos_start) + 0.5f * (cos_start - cos_end)));
+      }
+      const Vec3f from = ps.find_point3("from").value_or(Vec3f(0.0f));
+      const Vec3f to = ps.find_point3("to").value_or(Vec3f(0, 0, 1));
+      const Vec3f dir = xf.vector(to - from);
+      if (!(length(dir) > 0.0f) || !is_finite(dir)) ps.fail(line, "\"from\" and \"to\" must differ");
+      SpotLightDesc l;
+      l.position = xf.point(from);
+      l.direction = normalize(dir);
+      l.intensity = light_spectrum(ps, "I") * s;
+      l.coverage_deg = 2.0f * cone;
+      l.falloff_deg = 2.0f * inner;
+      l.falloff = SpotFalloff::SmoothStep;
+      scene_.spot_lights.push_back(l);
+    } else if (type == "distant") {
+      float s = scale;
+      if (const float e = ps.get_float("illuminance", -1.0f); e > 0.0f) s *= e;
+      const Vec3f from = ps.find_point3("from").value_or(Vec3f(0.0f));
+      const Vec3f to = ps.find_point3("to").value_or(Vec3f(0, 0, 1));
+      const Vec3f dir = xf.vector(to - from);
+      if (!(length(dir) > 0.0f) || !is_finite(dir)) ps.fail(line, "\"from\" and \"to\" must differ");
+      scene_.directional_lights.push_back({normalize(dir), light_spectrum(ps, "L") * s});
+    } else if (type == "infinite") {
+      infinite_light(ps, scale);
+    } else {
+      diag_.warn(ps, "light " + in_quotes(type) + " is not supported; skipped");
+      diag_.unsupported("pbrt light " + in_quotes(type));
+      for (const PbrtParam& p : ps.params()) p.used = true;
+    }
+    diag_.report_unused(ps);
+  }
+
+  void infinite_light(const PbrtParams& ps, float scale) {
+    const auto file = ps.find_string("filename");
+    if (ps.has("portal")) ps.get_point3s("portal");
+    if (file) {
+      diag_.warn(ps, "image-based infinite lights are not rendered yet (" + in_quotes(*file) + ")");
+      diag_.unsupported("image-based infinite lights (pbrt \"infinite\" with \"filename\")");
+      if (ps.has("L")) light_spectrum(ps, "L");
+      if (ps.has("illuminance")) ps.get_float("illuminance", -1.0f);
+      return;
+    }
+    float s = scale;
+    if (const float e = ps.get_float("illuminance", -1.0f); e > 0.0f) s *= e / kPi;
+    scene_.infinite_lights.push_back({light_spectrum(ps, "L") * s});
+  }
+
+  void area_light_source(PbrtCursor& cur, int line) {
+    const std::string type = read_string(cur, line, "AreaLightSource");
+    PbrtParams ps = read_params(cur, line, "AreaLightSource " + in_quotes(type), gs_.defaults.light);
+    require_world(line, "AreaLightSource");
+    if (type != "diffuse") {
+      diag_.warn(ps, "area light " + in_quotes(type) + " is not supported; the shapes that follow do not emit");
+      diag_.unsupported("pbrt area light " + in_quotes(type));
+      for (const PbrtParam& p : ps.params()) p.used = true;
+      gs_.area_light.reset();
+      return;
+    }
+    AreaLight a;
+    a.radiance = light_spectrum(ps, "L") * ps.get_float("scale", 1.0f);
+    a.two_sided = ps.get_bool("twosided", false);
+    if (const auto f = ps.find_string("filename")) {
+      diag_.warn(ps, "image emission (" + in_quotes(*f) + ") is not rendered; \"L\" is used");
+      diag_.unsupported("textured area lights (pbrt \"filename\")");
+    }
+    if (ps.has("power")) {
+      ps.get_float("power", -1.0f);
+      diag_.warn(ps, "\"power\" is not supported for area lights; the radiance is \"L\" x \"scale\"");
+      diag_.unsupported("area-light \"power\"");
+    }
+    diag_.report_unused(ps);
+    gs_.area_light = a;
+  }
+
+  // ---- state ----
+
+  SceneDesc scene_;
+  PbrtDiagnostics diag_{scene_};
+  std::string root_path_, root_dir_, include_trace_;
+  std::vector<OpenFile> files_;
+  GraphicsState gs_;
+  std::vector<Block> blocks_;
+  std::array<bool, 2> active_ = {true, true};
+  bool world_ = false, have_camera_ = false, warned_transform_block_ = false;
+  PbrtCameraInput camera_;
+  std::map<std::string, TransformPair> coord_systems_;
+  std::map<std::string, int> named_materials_;
+  std::map<std::string, TextureDef> textures_;
+  std::map<std::string, ObjectDef> objects_;
+  std::optional<std::string> current_object_;
+  int default_material_ = -1, root_end_line_ = 0;
+};
+
+}  // namespace
+
+SceneDesc parse_pbrt(std::string text, const std::string& path) { return PbrtParser(path).run(std::move(text)); }
+
+SceneDesc load_pbrt(const std::string& path) { return parse_pbrt(read_file_maybe_gzip(path), path); }
+
+}  // namespace kiln

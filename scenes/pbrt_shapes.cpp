@@ -1,0 +1,181 @@
+#include "scenes/pbrt_shapes.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "scenes/gzip_file.h"
+#include "scenes/ply_loader.h"
+
+namespace kiln {
+namespace {
+
+// pbrt's default number of Loop subdivision levels.
+constexpr int kDefaultLoopLevels = 3;
+
+std::string shape_name(const std::string& type, const PbrtParams& ps) {
+  return "Shape \"" + type + "\" (" + std::filesystem::path(ps.file()).filename().string() + ":" +
+         std::to_string(ps.line()) + ")";
+}
+
+// Indices checked against the vertex count; `per` vertices per primitive.
+std::vector<uint32_t> checked_indices(const PbrtParams& ps, const std::vector<int64_t>& idx, size_t vertices,
+                                      size_t per, const char* what) {
+  if (idx.size() % per != 0)
+    ps.fail(ps.line(), "\"indices\" has " + std::to_string(idx.size()) + " values, not a multiple of " +
+                           std::to_string(per) + " (" + what + ")");
+  std::vector<uint32_t> out(idx.size());
+  for (size_t i = 0; i < idx.size(); ++i) {
+    if (idx[i] < 0 || uint64_t(idx[i]) >= vertices)
+      ps.fail(ps.line(), "\"indices\" value " + std::to_string(idx[i]) + " (entry " + std::to_string(i) +
+                             ") is out of range: \"P\" has " + std::to_string(vertices) + " points");
+    out[i] = uint32_t(idx[i]);
+  }
+  return out;
+}
+
+void check_vertex_data(const PbrtParams& ps, const MeshDesc& m) {
+  if (!m.normals.empty() && m.normals.size() != m.positions.size())
+    ps.fail(ps.line(), "\"N\" has " + std::to_string(m.normals.size()) + " normals but \"P\" has " +
+                           std::to_string(m.positions.size()) + " points");
+  if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
+    ps.fail(ps.line(), "\"uv\" has " + std::to_string(m.uvs.size()) + " entries but \"P\" has " +
+                           std::to_string(m.positions.size()) + " points");
+}
+
+std::vector<Vec3f> required_points(const PbrtParams& ps) {
+  std::vector<Vec3f> p = ps.get_point3s("P");
+  if (p.empty()) ps.fail(ps.line(), "needs \"point3 P\"");
+  return p;
+}
+
+// Indices, or 0..n-1 when the list is absent and the shape has exactly one primitive of n vertices.
+std::vector<int64_t> indices_or_single(const PbrtParams& ps, size_t vertices, size_t per, const char* what) {
+  std::vector<int64_t> idx = ps.get_ints("indices");
+  if (idx.empty()) {
+    if (vertices != per)
+      ps.fail(ps.line(), "needs \"integer indices\" (only a single " + std::string(what) + " of exactly " +
+                             std::to_string(per) + " points may leave them out)");
+    for (size_t i = 0; i < per; ++i) idx.push_back(int64_t(i));
+  }
+  return idx;
+}
+
+MeshDesc triangle_mesh(const PbrtParams& ps, const std::string& name) {
+  MeshDesc m;
+  m.name = name;
+  m.positions = required_points(ps);
+  m.indices = checked_indices(ps, indices_or_single(ps, m.positions.size(), 3, "triangle"), m.positions.size(), 3,
+                              "3 per triangle");
+  m.normals = ps.get_normals("N");
+  m.uvs = ps.get_point2s("uv");
+  check_vertex_data(ps, m);
+  return m;
+}
+
+MeshDesc bilinear_mesh(const PbrtParams& ps, const std::string& name, PbrtDiagnostics& diag) {
+  MeshDesc m;
+  m.name = name;
+  m.positions = required_points(ps);
+  const std::vector<uint32_t> quads =
+      checked_indices(ps, indices_or_single(ps, m.positions.size(), 4, "patch"), m.positions.size(), 4, "4 per patch");
+  m.normals = ps.get_normals("N");
+  m.uvs = ps.get_point2s("uv");
+  check_vertex_data(ps, m);
+  size_t non_planar = 0;
+  m.indices.reserve(quads.size() / 4 * 6);
+  for (size_t q = 0; q + 3 < quads.size(); q += 4) {
+    const uint32_t v00 = quads[q], v10 = quads[q + 1], v01 = quads[q + 2], v11 = quads[q + 3];
+    const Vec3f p00 = m.positions[v00], p10 = m.positions[v10], p01 = m.positions[v01], p11 = m.positions[v11];
+    const Vec3f n = cross(p10 - p00, p01 - p00);
+    const float len = length(n), diag_len = std::max(length(p11 - p00), length(p10 - p01));
+    if (len > 0.0f && std::abs(dot(p11 - p00, n / len)) > kBilinearPlanarityTolerance * diag_len) ++non_planar;
+    m.indices.insert(m.indices.end(), {v00, v10, v11, v00, v11, v01});
+  }
+  if (non_planar > 0)
+    diag.warn(ps, std::to_string(non_planar) + " of " + std::to_string(quads.size() / 4) +
+                      " bilinear patches are not planar; each is rendered as two flat triangles");
+  return m;
+}
+
+MeshDesc loop_mesh(const PbrtParams& ps, const std::string& name) {
+  MeshDesc m;
+  m.name = name;
+  m.positions = required_points(ps);
+  m.indices = checked_indices(ps, indices_or_single(ps, m.positions.size(), 3, "triangle"), m.positions.size(), 3,
+                              "3 per triangle");
+  const int levels = ps.get_int("levels", kDefaultLoopLevels);
+  if (levels < 0 || levels > kMaxSubdivisionLevels)
+    ps.fail(ps.line(), "\"levels\" " + std::to_string(levels) + " is outside 0.." +
+                           std::to_string(kMaxSubdivisionLevels) + " (each level multiplies the triangles by 4)");
+  m.subdivide = levels;
+  m.smooth = true;  // pbrt shades the limit surface with its normals
+  return m;
+}
+
+MeshDesc ply_mesh(const PbrtParams& ps, const std::string& name, const PbrtShapeContext& ctx) {
+  const auto file = ps.find_string("filename");
+  if (!file || file->empty()) ps.fail(ps.line(), "needs \"string filename\"");
+  const std::string path = ctx.resolve(*file, ps.line());
+  MeshDesc m;
+  try {
+    m = parse_ply(read_file_maybe_gzip(path), path);
+  } catch (const Error& e) {
+    ps.fail(ps.line(), std::string("cannot load the PLY mesh: ") + e.what());
+  }
+  m.name = name + " " + std::filesystem::path(*file).filename().string();
+  if (ps.has("displacement")) {
+    ps.find_texture("displacement");
+    ctx.diagnostics.warn(ps, "displacement is not rendered; the mesh is used undisplaced");
+    ctx.diagnostics.unsupported("displacement (pbrt plymesh)");
+  }
+  if (ps.has("edgelength")) ps.get_float("edgelength", 1.0f);  // only meaningful with displacement
+  return m;
+}
+
+SphereDesc sphere(const PbrtParams& ps, const std::string& name, PbrtDiagnostics& diag) {
+  SphereDesc s;
+  s.name = name;
+  s.radius = ps.get_float("radius", 1.0f);
+  if (!(s.radius > 0.0f)) ps.fail(ps.line(), "\"radius\" must be positive");
+  const float zmin = ps.get_float("zmin", -s.radius), zmax = ps.get_float("zmax", s.radius);
+  const float phimax = ps.get_float("phimax", 360.0f);
+  if (zmin > -s.radius || zmax < s.radius || phimax < 360.0f) {
+    diag.warn(ps, "partial spheres (zmin / zmax / phimax) are not supported; the full sphere is rendered");
+    diag.unsupported("partial spheres (pbrt zmin / zmax / phimax)");
+  }
+  return s;
+}
+
+}  // namespace
+
+PbrtShape make_pbrt_shape(const std::string& type, const PbrtParams& ps, const PbrtShapeContext& ctx) {
+  const std::string name = shape_name(type, ps);
+  PbrtShape out;
+  if (type == "trianglemesh")
+    out.mesh = triangle_mesh(ps, name);
+  else if (type == "plymesh")
+    out.mesh = ply_mesh(ps, name, ctx);
+  else if (type == "loopsubdiv")
+    out.mesh = loop_mesh(ps, name);
+  else if (type == "bilinearmesh")
+    out.mesh = bilinear_mesh(ps, name, ctx.diagnostics);
+  else if (type == "sphere")
+    out.sphere = sphere(ps, name, ctx.diagnostics);
+  else {
+    ctx.diagnostics.warn(ps, "shape \"" + type + "\" is not supported; skipped");
+    ctx.diagnostics.unsupported("pbrt shape \"" + type + "\"");
+    for (const PbrtParam& p : ps.params()) p.used = true;  // one warning for the shape, not one per parameter
+    return out;
+  }
+  if (ps.has("alpha")) {
+    const auto tex = ps.find_texture("alpha");
+    if (tex || ps.get_float("alpha", 1.0f) < 1.0f) {
+      ctx.diagnostics.warn(ps, "alpha cut-outs are not rendered; the shape is opaque");
+      ctx.diagnostics.unsupported("alpha cut-outs (pbrt \"alpha\")");
+    }
+  }
+  return out;
+}
+
+}  // namespace kiln
