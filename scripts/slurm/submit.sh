@@ -34,25 +34,28 @@ scene="" kiln="" dir="" parts=4 split=spp spp="" camera="" seed=0 cpus="" tasks=
 render_args=() sbatch_args=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --*=*) opt=${1%%=*} val=${1#*=}; shift; set -- "$opt" "$val" "$@"; continue ;;
-    --parts) parts=$2 ;;
-    --split) split=$2 ;;
-    --spp) spp=$2 ;;
-    --camera) camera=$2 ;;
-    --seed) seed=$2 ;;
-    --cpus-per-task) cpus=$2 ;;
-    --dir) dir=$2 ;;
-    --kiln) kiln=$2 ;;
-    --render-arg) render_args+=("$2") ;;
-    --tasks) tasks=$2 ;;
-    --merge-only) merge_only=1; shift; continue ;;
+    --*=*) opt=${1%%=*} val=${1#*=}; shift; set -- "$opt" "$val" "$@" ;;
+    --parts | --split | --spp | --camera | --seed | --cpus-per-task | --dir | --kiln | --render-arg | --tasks)
+      [ $# -ge 2 ] || die "$1 needs a value"
+      case "$1" in
+        --parts) parts=$2 ;;
+        --split) split=$2 ;;
+        --spp) spp=$2 ;;
+        --camera) camera=$2 ;;
+        --seed) seed=$2 ;;
+        --cpus-per-task) cpus=$2 ;;
+        --dir) dir=$2 ;;
+        --kiln) kiln=$2 ;;
+        --render-arg) render_args+=("$2") ;;
+        --tasks) tasks=$2 ;;
+      esac
+      shift 2 ;;
+    --merge-only) merge_only=1; shift ;;
     --) shift; sbatch_args=("$@"); break ;;
     -h | --help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -*) die "unknown option $1 (see --help)" ;;
-    *) [ -z "$scene" ] || die "one scene only ($scene, $1)"; scene=$1; shift; continue ;;
+    *) [ -z "$scene" ] || die "one scene only ($scene, $1)"; scene=$1; shift ;;
   esac
-  [ $# -ge 2 ] || die "$1 needs a value"
-  shift 2
 done
 [ -n "$scene" ] || die "no scene given (see --help)"
 [ -f "$scene" ] || die "$scene: no such file"

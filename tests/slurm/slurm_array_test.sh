@@ -57,7 +57,9 @@ fail() {
 
 scene="$src/scenes/default.xml"
 spp=32 seed=7
-submit=("$src/scripts/slurm/submit.sh" --kiln "$kiln" --spp "$spp" --seed "$seed" --cpus-per-task 1 "$scene")
+# --camera and --render-arg as a user would pass them; the single run gets the same options.
+submit=("$src/scripts/slurm/submit.sh" --kiln "$kiln" --spp "$spp" --seed "$seed" --cpus-per-task 1 --camera 1
+  --render-arg=--max-depth=6 "$scene")
 
 # The value printed for key by submit.sh ("key=value").
 field() { sed -n "s/^$1=//p" <<< "$2"; }
@@ -76,7 +78,7 @@ step "starting munged, slurmctld, slurmd in $work/cluster"
 slurm_cluster_start "$work/cluster" || fail "the cluster did not start"
 
 step "single-process render ($spp spp, seed $seed)"
-"$kiln" render "$scene" --spp "$spp" --seed "$seed" --camera 1 -q -o "$work/single" > /dev/null
+"$kiln" render "$scene" --spp "$spp" --seed "$seed" --camera 1 --max-depth 6 -q -o "$work/single" > /dev/null
 single="$work/single/default.exr"
 
 step "case 1: 4-task spp split and 3-task rows split"

@@ -1,0 +1,42 @@
+#!/bin/bash
+# Wall time of one frame as a Slurm job array (scripts/slurm/submit.sh, N tasks + merge) against the same frame
+# rendered by one process, on the test cluster of tests/slurm/cluster.sh (this machine as the only node). Runs
+# are alternated; prints every run and the medians. The array's time runs from submit.sh's start to the merged
+# EXR's modification time (written last, by the merge job).
+#
+# Usage: bench_array.sh KILN SOURCE_DIR [SCENE [RUNS [PARTS [CPUS_PER_TASK]]]]
+set -euo pipefail
+kiln=$(realpath "$1") src=$(realpath "$2")
+scene=$(realpath "${3:-$src/scenes/default.xml}") runs=${4:-3} parts=${5:-4} cpus=${6:-1}
+export PATH="$PATH:/usr/sbin:/sbin"
+if [ -z "${KILN_SLURM_NAMESPACE:-}" ] && unshare --pid --fork --kill-child --mount-proc true 2> /dev/null; then
+  KILN_SLURM_NAMESPACE=1 exec unshare --pid --fork --kill-child --mount-proc bash "$0" "$@"
+fi
+source "$(dirname "$0")/cluster.sh"
+work=$(mktemp -d "${TMPDIR:-/tmp}/kiln-slurm-bench.XXXXXX")
+chmod 755 "$work"
+trap 'slurm_cluster_stop; rm -rf "$work"' EXIT
+slurm_cluster_start "$work/cluster"
+
+now() { date +%s.%N; }
+sub() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a - b}'; }
+median() { printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+singles=() arrays=() tasks=() merges=()
+for r in $(seq "$runs"); do
+  t0=$(now)
+  "$kiln" render "$scene" --seed 0 -q -o "$work/single$r" > /dev/null
+  t1=$(now)
+  singles+=("$(sub "$t1" "$t0")")
+
+  t0=$(now)
+  out=$("$src/scripts/slurm/submit.sh" --kiln "$kiln" --seed 0 --parts "$parts" --cpus-per-task "$cpus" --dir "$work/array$r" "$scene")
+  merge=$(sed -n 's/^merge_job=//p' <<< "$out") output=$(sed -n 's/^output=//p' <<< "$out")
+  state=$(wait_job_end 3600 "$merge")
+  [ "$state" = COMPLETED ] || { echo "merge job $merge ended $state" >&2; exit 1; }
+  arrays+=("$(sub "$(stat -c %.9Y "$output")" "$t0")")
+  # Render seconds of the tasks as kiln reports them, summed.
+  tasks+=("$(cat "$work/array$r"/logs/task-*.log | tr '\r' '\n' | awk '/^kiln: [0-9.]+s, / {s += substr($2, 1, length($2) - 2)} END {printf "%.2f", s}')")
+  merges+=("$(sed -n 's/.*RunTime=\([0-9:]*\).*/\1/p' <<< "$(scontrol show job -o "$merge")")")
+  echo "run $r: single process ${singles[-1]} s; $parts-task array ${arrays[-1]} s (task render time summed ${tasks[-1]} s, merge job run time ${merges[-1]})"
+done
+echo "median of $runs: single process $(median "${singles[@]}") s, $parts-task array $(median "${arrays[@]}") s"
