@@ -4,10 +4,12 @@
 # are alternated; prints every run and the medians. The array's time runs from submit.sh's start to the merged
 # EXR's modification time (written last, by the merge job).
 #
-# Usage: bench_array.sh KILN SOURCE_DIR [SCENE [RUNS [PARTS [CPUS_PER_TASK]]]]
+# Usage: bench_array.sh KILN SOURCE_DIR [SCENE [RUNS [PARTS [CPUS_PER_TASK [SPP]]]]]   (SPP: the camera's by default)
 set -euo pipefail
 kiln=$(realpath "$1") src=$(realpath "$2")
 scene=$(realpath "${3:-$src/scenes/default.xml}") runs=${4:-3} parts=${5:-4} cpus=${6:-1}
+spp_args=()
+[ -z "${7:-}" ] || spp_args=(--spp "$7")
 export PATH="$PATH:/usr/sbin:/sbin"
 if [ -z "${KILN_SLURM_NAMESPACE:-}" ] && unshare --pid --fork --kill-child --mount-proc true 2> /dev/null; then
   KILN_SLURM_NAMESPACE=1 exec unshare --pid --fork --kill-child --mount-proc bash "$0" "$@"
@@ -24,12 +26,12 @@ median() { printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {print (NR % 2) 
 singles=() arrays=() tasks=() merges=()
 for r in $(seq "$runs"); do
   t0=$(now)
-  "$kiln" render "$scene" --seed 0 -q -o "$work/single$r" > /dev/null
+  "$kiln" render "$scene" --seed 0 "${spp_args[@]}" -q -o "$work/single$r" > /dev/null
   t1=$(now)
   singles+=("$(sub "$t1" "$t0")")
 
   t0=$(now)
-  out=$("$src/scripts/slurm/submit.sh" --kiln "$kiln" --seed 0 --parts "$parts" --cpus-per-task "$cpus" --dir "$work/array$r" "$scene")
+  out=$("$src/scripts/slurm/submit.sh" --kiln "$kiln" --seed 0 "${spp_args[@]}" --parts "$parts" --cpus-per-task "$cpus" --dir "$work/array$r" "$scene")
   merge=$(sed -n 's/^merge_job=//p' <<< "$out") output=$(sed -n 's/^output=//p' <<< "$out")
   state=$(wait_job_end 3600 "$merge")
   [ "$state" = COMPLETED ] || { echo "merge job $merge ended $state" >&2; exit 1; }

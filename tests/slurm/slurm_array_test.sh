@@ -19,8 +19,11 @@ kiln=$1 src=$2
 export PATH="$PATH:/usr/sbin:/sbin"
 
 skip() {
+  if [ "${KILN_REQUIRE_SLURM:-0}" = 1 ]; then
+    echo "FAIL (KILN_REQUIRE_SLURM=1): $*"
+    exit 1
+  fi
   echo "SKIP: $*"
-  [ "${KILN_REQUIRE_SLURM:-0}" = 1 ] && exit 1
   exit 77
 }
 for prog in munged mungekey munge slurmctld slurmd sbatch squeue scontrol scancel sinfo idiff iinfo; do
@@ -65,7 +68,10 @@ submit=("$src/scripts/slurm/submit.sh" --kiln "$kiln" --spp "$spp" --seed "$seed
 field() { sed -n "s/^$1=//p" <<< "$2"; }
 meta() { iinfo -v "$1" | sed -n "s/^ *$2: \"\(.*\)\"$/\1/p"; }
 same_image() {
-  idiff -fail 1e-11 -failrelative 1e-5 -warn 1e-11 -warnrelative 1e-5 "$1" "$2" || fail "$1 differs from the single run $2"
+  local out
+  out=$(idiff -v -fail 1e-11 -failrelative 1e-5 -warn 1e-11 -warnrelative 1e-5 "$1" "$2") ||
+    fail "$1 differs from the single run $2: $out"
+  echo "  $1 matches the single run:$(grep "Max error" <<< "$out")"
 }
 wait_merge_completed() {
   local state
