@@ -22,13 +22,16 @@ slurm_cluster_start "$work/cluster"
 
 now() { date +%s.%N; }
 sub() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a - b}'; }
+# Render seconds kiln reports ("kiln: 12.34s, ..."), summed over the logs given.
+render_seconds() { cat "$@" | tr '\r' '\n' | awk '/^kiln: [0-9.]+s, / {s += substr($2, 1, length($2) - 2)} END {printf "%.2f", s}'; }
 median() { printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 singles=() arrays=() tasks=() merges=()
 for r in $(seq "$runs"); do
   t0=$(now)
-  "$kiln" render "$scene" --seed 0 "${spp_args[@]}" -q -o "$work/single$r" > /dev/null
+  "$kiln" render "$scene" --seed 0 "${spp_args[@]}" -o "$work/single$r" > /dev/null 2> "$work/single$r.log"
   t1=$(now)
   singles+=("$(sub "$t1" "$t0")")
+  single_render=$(render_seconds "$work/single$r.log")
 
   t0=$(now)
   out=$("$src/scripts/slurm/submit.sh" --kiln "$kiln" --seed 0 "${spp_args[@]}" --parts "$parts" --cpus-per-task "$cpus" --dir "$work/array$r" "$scene")
@@ -37,8 +40,8 @@ for r in $(seq "$runs"); do
   [ "$state" = COMPLETED ] || { echo "merge job $merge ended $state" >&2; exit 1; }
   arrays+=("$(sub "$(stat -c %.9Y "$output")" "$t0")")
   # Render seconds of the tasks as kiln reports them, summed.
-  tasks+=("$(cat "$work/array$r"/logs/task-*.log | tr '\r' '\n' | awk '/^kiln: [0-9.]+s, / {s += substr($2, 1, length($2) - 2)} END {printf "%.2f", s}')")
+  tasks+=("$(render_seconds "$work/array$r"/logs/task-*.log)")
   merges+=("$(sed -n 's/.*RunTime=\([0-9:]*\).*/\1/p' <<< "$(scontrol show job -o "$merge")")")
-  echo "run $r: single process ${singles[-1]} s; $parts-task array ${arrays[-1]} s (task render time summed ${tasks[-1]} s, merge job run time ${merges[-1]})"
+  echo "run $r: single process ${singles[-1]} s (rendering $single_render s); $parts-task array ${arrays[-1]} s (rendering, summed over the tasks, ${tasks[-1]} s; merge job ${merges[-1]})"
 done
 echo "median of $runs: single process $(median "${singles[@]}") s, $parts-task array $(median "${arrays[@]}") s"
