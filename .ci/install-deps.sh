@@ -5,6 +5,8 @@ pkgs=(build-essential cmake libembree-dev libtbb-dev libopenimageio-dev openimag
       libtinyobjloader-dev zlib1g-dev libgtest-dev libbenchmark-dev libpugixml-dev nlohmann-json3-dev libcli11-dev)
 # libFuzzer (the Fuzz.LoadersRunClean test, .ci/fuzz.sh) needs clang and its runtime.
 pkgs+=(clang libclang-rt-14-dev)
+# The Slurm job-array test (Slurm.JobArrayRendersOneFrame, tests/slurm/) starts its own cluster.
+pkgs+=(slurm-wlm munge)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -126,6 +126,25 @@ ExrFile read_exr(const std::string& path) {
   return f;
 }
 
+std::string find_meta(const Metadata& meta, const std::string& key) {
+  for (const auto& [k, v] : meta)
+    if (k == key) return v;
+  return {};
+}
+
+ExrHeader read_exr_header(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path, "", "cannot open image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  ExrHeader h;
+  for (const auto& p : spec.extra_attribs) h.meta.emplace_back(p.name().string(), p.get_string());
+  h.window = DataWindow{spec.x, spec.y, spec.full_width, spec.full_height};
+  h.width = spec.width;
+  h.height = spec.height;
+  in->close();
+  return h;
+}
+
 Image read_image(const std::string& path) {
   std::vector<float> data;
   const OIIO::ImageSpec spec = read_float_pixels(path, data);

@@ -30,19 +30,28 @@ void write_exr(const std::string& path, const Image& rgb, const std::vector<AovL
                const std::optional<DataWindow>& window = std::nullopt);
 void write_png(const std::string& path, const std::vector<uint8_t>& rgb8, int width, int height);
 
+// The value of key in meta; empty when absent.
+std::string find_meta(const Metadata& meta, const std::string& key);
+
 struct ExrFile {
   Image rgb;
   std::vector<AovLayer> aovs;  // every channel other than R, G, B (one layer per channel here)
   Metadata meta;
   DataWindow window;  // the data window (x, y) and the full frame size
-  std::string find(const std::string& key) const {
-    for (const auto& [k, v] : meta)
-      if (k == key) return v;
-    return {};
-  }
+  std::string find(const std::string& key) const { return find_meta(meta, key); }
 };
 // Throws kiln::Error when the file cannot be read or has no R,G,B channels.
 ExrFile read_exr(const std::string& path);
+
+// An image's metadata, data window and size, without its pixels.
+struct ExrHeader {
+  Metadata meta;
+  DataWindow window;
+  int width = 0, height = 0;  // of the data window
+  std::string find(const std::string& key) const { return find_meta(meta, key); }
+};
+// Throws kiln::Error when the file cannot be opened as an image.
+ExrHeader read_exr_header(const std::string& path);
 // Any image OIIO reads (PNG references), as float RGB in [0,1] for 8-bit files.
 Image read_image(const std::string& path);
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <utility>
 
 #include "core/error.h"
 
@@ -219,6 +220,16 @@ Rgb parse_rgb(std::string_view text, const TextSource& src) {
   return {v[0], v[1], v[2]};
 }
 
+namespace {
+thread_local FileReadObserver* t_file_read_observer = nullptr;
+}  // namespace
+
+FileReadObserver::FileReadObserver(Callback callback) : callback_(std::move(callback)), outer_(t_file_read_observer) {
+  t_file_read_observer = this;
+}
+
+FileReadObserver::~FileReadObserver() { t_file_read_observer = outer_; }
+
 std::string read_file_bytes(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path, "", "cannot read file: it is a directory");
@@ -230,6 +241,7 @@ std::string read_file_bytes(const std::string& path) {
   in.seekg(0, std::ios::beg);
   std::string data(static_cast<size_t>(size), '\0');
   if (size > 0 && !in.read(data.data(), size)) throw Error(path, "", "cannot read file");
+  if (t_file_read_observer) t_file_read_observer->callback_(path, data);
   return data;
 }
 

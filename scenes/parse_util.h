@@ -4,6 +4,7 @@
 //   "scene.xml: line 12 (Camera id=1 / Position): expected 3 numbers, got 2"
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -53,7 +54,24 @@ Vec2f parse_vec2(std::string_view text, const TextSource& src);
 Vec3f parse_vec3(std::string_view text, const TextSource& src);
 Rgb parse_rgb(std::string_view text, const TextSource& src);
 
-// Whole file as bytes; throws kiln::Error naming the file when it is missing or unreadable.
+// Whole file as bytes; throws kiln::Error naming the file when it is missing or unreadable. Every loader reads its
+// inputs (scene file, PLY / OBJ meshes, binary vertex data) through it.
 std::string read_file_bytes(const std::string& path);
+
+// While alive, sees every file read_file_bytes returns on this thread (e.g. to fingerprint a scene by the bytes of
+// all the files it was loaded from). Observers nest: the innermost one is called.
+class FileReadObserver {
+ public:
+  using Callback = std::function<void(const std::string& path, std::string_view bytes)>;
+  explicit FileReadObserver(Callback callback);
+  ~FileReadObserver();
+  FileReadObserver(const FileReadObserver&) = delete;
+  FileReadObserver& operator=(const FileReadObserver&) = delete;
+
+ private:
+  friend std::string read_file_bytes(const std::string& path);
+  Callback callback_;
+  FileReadObserver* outer_;
+};
 
 }  // namespace kiln

@@ -17,6 +17,7 @@
 #include "renderer/image_io.h"
 #include "renderer/tonemap.h"
 #include "renderer/ray_query.h"
+#include "renderer/scene_fingerprint.h"
 #include "renderer/world.h"
 #include "scenes/loader.h"
 
@@ -63,6 +64,13 @@ nlohmann::json world_stats_json(const World& w) {
           {"unsupported", w.unsupported}};
 }
 
+// The options besides the integrator that change a frame's pixels, so that `kiln merge` refuses parts rendered
+// with different ones.
+std::string render_options(const RenderArgs& a) {
+  return "clamp=" + std::to_string(a.rules.clamp) + " physical_lights=" + (a.rules.physical_lights ? "1" : "0") +
+         " subdivide=" + std::to_string(a.subdivide);
+}
+
 Crop parse_crop(const std::string& text, int width, int height) {
   Crop c;
   char extra = 0;
@@ -106,13 +114,19 @@ std::vector<AovLayer> crop_layers(std::vector<AovLayer> layers, int width, const
 
 int cmd_merge(const std::vector<std::string>& parts, const std::string& output) {
   const MergeResult r = merge_parts(parts);
-  write_exr(output, r.image, {},
-            {{"kiln:version", KILN_VERSION},
-             {"kiln:merged_parts", std::to_string(parts.size())},
-             {"kiln:spp", std::to_string(r.max_samples)},
-             {"kiln:incomplete", r.complete ? "false" : "true"}});
+  Metadata meta = {{"kiln:version", KILN_VERSION},
+                   {"kiln:merged_parts", std::to_string(parts.size())},
+                   {"kiln:spp", std::to_string(r.max_samples)},
+                   {"kiln:incomplete", r.complete() ? "false" : "true"}};
+  meta.insert(meta.end(), r.frame.begin(), r.frame.end());
+  if (!r.complete()) meta.emplace_back("kiln:missing", missing_metadata(r.missing));
+  write_exr(output, r.image, {}, meta);
   std::printf("%s\n", output.c_str());
-  if (!r.complete) std::fprintf(stderr, "kiln: warning: pixels received different sample counts (missing parts?)\n");
+  for (const SampleGap& g : r.missing)
+    std::fprintf(stderr, "kiln: warning: %s: missing samples %llu:%llu of %llu in pixels %d,%d,%d,%d (render them with %s)\n",
+                 output.c_str(), (unsigned long long)g.first, (unsigned long long)g.last, (unsigned long long)r.spp_total,
+                 g.x0, g.x1, g.y0, g.y1, g.to_args().c_str());
+  if (!r.complete()) std::fprintf(stderr, "kiln: warning: %s is incomplete (kiln:incomplete = true)\n", output.c_str());
   return 0;
 }
 
@@ -124,7 +138,8 @@ int cmd_render(const RenderArgs& args) {
 
   LoadOptions lo;
   lo.subdivide = args.subdivide;
-  SceneDesc scene = load_scene(args.scene, lo);  // its mesh arrays are handed to the world below
+  SceneFingerprint fingerprint;  // identifies the scene in the metadata of split renders (renderer/merge.h)
+  SceneDesc scene = load_scene_fingerprinted(args.scene, lo, fingerprint);  // its meshes are handed to the world
   const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   if (scene.cameras.empty()) throw Error(args.scene, "", "scene has no camera");
   std::vector<const CameraDesc*> cameras;
@@ -156,6 +171,7 @@ int cmd_render(const RenderArgs& args) {
   stats["world"] = world_stats_json(*world);
   stats["cameras"] = nlohmann::json::array();
   bool interrupted = false;
+  const bool is_part = args.crop || args.spp_range;
 
   for (const CameraDesc* cd : cameras) {
     const Camera camera(*cd);
@@ -207,6 +223,9 @@ int cmd_render(const RenderArgs& args) {
       rs = render_samples(*world, camera, settings, ro, first, last, film);
     }
     interrupted = rs.cancelled;
+    // A part of a split frame (--crop / --spp-range) cut short holds unequal sample counts that `kiln merge`
+    // cannot weigh: it is not written, so the merge sees the range as missing and a re-run fills it.
+    if (interrupted && is_part) break;
 
     const std::string stem = stem_of(cd->image_name, "camera" + cd->id);
     const std::string exr = (std::filesystem::path(args.out_dir) / (stem + ".exr")).string();
@@ -229,9 +248,13 @@ int cmd_render(const RenderArgs& args) {
                      {"kiln:spp", std::to_string(last - first)},
                      {"kiln:spp_first", std::to_string(first)},
                      {"kiln:spp_last", std::to_string(last)},
+                     {"kiln:spp_total", std::to_string(spp)},
+                     {"kiln:scene_hash", fingerprint.hash},
+                     {"kiln:scene_files", std::to_string(fingerprint.files)},
                      {"kiln:seed", std::to_string(args.seed)},
                      {"kiln:rules", rules_name(rules)},
                      {"kiln:integrator", settings.describe()},
+                     {"kiln:render_options", render_options(args)},
                      {"kiln:render_seconds", std::to_string(rs.seconds)},
                      {"kiln:incomplete", rs.cancelled ? "true" : "false"}};
     if (final_error) {
@@ -293,7 +316,8 @@ int cmd_render(const RenderArgs& args) {
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   if (interrupted) {
-    std::fprintf(stderr, "kiln: interrupted; wrote the samples so far (marked incomplete)\n");
+    std::fprintf(stderr, is_part ? "kiln: interrupted; the part was not written\n"
+                                 : "kiln: interrupted; wrote the samples so far (marked incomplete)\n");
     return 130;
   }
   return 0;

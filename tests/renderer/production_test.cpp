@@ -1,11 +1,13 @@
 // Production behaviour (issue 10): AOV layers readable by other tools, interrupt-safe output, and split renders
 // that merge into the single-run image.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <fstream>
 #include <thread>
 
 #include "render_util.h"
@@ -45,17 +47,41 @@ TEST(Production, AovChannelsReadBackWithStandardNames) {
   (void)checked;
 }
 
+// Starts `kiln render scene -o out --spp 100000 extra...` with stderr to log and returns once it has begun
+// rendering (it reports the camera on stderr after installing its signal handlers), or after 60 s; -1 when it
+// could not be started.
+pid_t start_long_render(const std::string& out, const std::string& log, const std::vector<std::string>& extra) {
+  fs::remove(log);
+  const pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) _exit(127);
+    dup2(fd, STDERR_FILENO);
+    std::vector<std::string> args = {KILN_BINARY, "render", default_scene(), "-o", out, "--spp", "100000"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(KILN_BINARY, argv.data());
+    _exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::ifstream f(log);
+    const std::string seen((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (seen.find("kiln: camera") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  return pid;
+}
+
 TEST(Production, InterruptWritesValidPartialExr) {
   const std::string dir = tmp_dir("interrupt");
   fs::remove_all(dir + "/out");
-  const pid_t pid = fork();
+  const pid_t pid = start_long_render(dir + "/out", dir + "/stderr.txt", {});
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const std::string scene = default_scene(), out = dir + "/out";
-    execl(KILN_BINARY, KILN_BINARY, "render", scene.c_str(), "-o", out.c_str(), "-q", "--spp", "100000", nullptr);
-    _exit(127);
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   kill(pid, SIGINT);
   int status = 0;
   waitpid(pid, &status, 0);
@@ -66,6 +92,22 @@ TEST(Production, InterruptWritesValidPartialExr) {
   EXPECT_EQ(f.rgb.width(), 400);
   for (const auto& e : fs::directory_iterator(dir + "/out"))
     EXPECT_NE(e.path().filename().string()[0], '.') << "temporary file left behind: " << e.path();
+}
+
+// A part of a split frame cut short by SIGTERM (Slurm's scancel, pre-emption, time limit) must leave nothing a
+// merge could count: no EXR, no PNG, no temporary file.
+TEST(Production, InterruptedPartLeavesNoPart) {
+  const std::string dir = tmp_dir("interrupt_part");
+  fs::remove_all(dir + "/out");
+  const pid_t pid = start_long_render(dir + "/out", dir + "/stderr.txt", {"--spp-range", "0:100000"});
+  ASSERT_GE(pid, 0);
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  if (fs::exists(dir + "/out"))
+    for (const auto& e : fs::directory_iterator(dir + "/out")) ADD_FAILURE() << "interrupted part left " << e.path();
 }
 
 TEST(Production, CropAndSppRangePartsMergeIntoTheFullRender) {
