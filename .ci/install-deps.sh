@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Kiln builds with, only those that are missing.
 set -euo pipefail
-pkgs=(build-essential cmake libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
-      libtinyobjloader-dev zlib1g-dev libgtest-dev libbenchmark-dev libpugixml-dev nlohmann-json3-dev libcli11-dev)
+pkgs=(build-essential cmake libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libpng-dev
+      libtinyobjloader-dev zlib1g-dev libxxhash-dev libgtest-dev libbenchmark-dev libpugixml-dev nlohmann-json3-dev
+      libcli11-dev)
 # libFuzzer (the Fuzz.LoadersRunClean test, .ci/fuzz.sh) needs clang and its runtime.
 pkgs+=(clang libclang-rt-14-dev)
 # The Slurm job-array test (Slurm.JobArrayRendersOneFrame, tests/slurm/) starts its own cluster.

@@ -2,7 +2,9 @@
 find_package(Threads REQUIRED)
 find_package(TBB REQUIRED)
 find_package(embree 3 REQUIRED)
-find_package(OpenImageIO REQUIRED)
+find_package(OpenImageIO REQUIRED)  # only for the plugin (renderer/image_plugin.h)
+find_package(OpenEXR 3 REQUIRED)
+find_package(PNG REQUIRED)
 find_package(pugixml REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
@@ -22,8 +24,9 @@ foreach(_tgt OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
     endif()
   endif()
 endforeach()
-add_library(kiln_oiio INTERFACE)
-target_link_libraries(kiln_oiio INTERFACE OpenImageIO::OpenImageIO)
+# What the renderer links for images: EXR and PNG directly (a few ms to load), dlopen for the OpenImageIO plugin.
+add_library(kiln_image_libs INTERFACE)
+target_link_libraries(kiln_image_libs INTERFACE OpenEXR::OpenEXR PNG::PNG ${CMAKE_DL_LIBS})
 
 # Debian ships tinyobjloader under two target names depending on the release.
 add_library(kiln_tinyobjloader INTERFACE)

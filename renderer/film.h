@@ -7,10 +7,15 @@
 
 namespace kiln {
 
+// Sums of a pixel's samples, each already multiplied by its pixel-filter weight (renderer/pixel_filter.h): with
+// negative filter lobes a weighted sample can be negative, and lum2 then still sums its square, so the variance
+// AOV is the variance of the weighted estimator.
 struct PixelSum {
   double r = 0, g = 0, b = 0;
   double lum2 = 0;  // sum of squared luminance (per-pixel variance AOV)
-  uint32_t n = 0;   // samples taken (per pixel: an interrupted wave leaves pixels with different counts)
+  double even_r = 0, even_g = 0, even_b = 0;  // sums over the even sample indices (adaptive sampling's estimate)
+  uint32_t n = 0;   // samples taken (per pixel: an interrupted wave or adaptive sampling leaves different counts)
+  bool converged = false;  // adaptive sampling stopped this pixel
 };
 
 class Film {

@@ -1,5 +1,6 @@
-// EXR / PNG output through OpenImageIO. Every file is written to a temporary name in the target folder and
-// renamed into place, so a crash or an interrupt never leaves a half-written image.
+// EXR (OpenEXR) and PNG (libpng) output and input; other formats are read through the OpenImageIO plugin
+// (renderer/image_plugin.h), loaded only when needed. Every file is written to a temporary name in the target
+// folder and renamed into place, so a crash or an interrupt never leaves a half-written image.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -36,7 +37,7 @@ std::string find_meta(const Metadata& meta, const std::string& key);
 struct ExrFile {
   Image rgb;
   std::vector<AovLayer> aovs;  // every channel other than R, G, B (one layer per channel here)
-  Metadata meta;
+  Metadata meta;        // the file's string attributes (Kiln writes its metadata as strings)
   DataWindow window;  // the data window (x, y) and the full frame size
   std::string find(const std::string& key) const { return find_meta(meta, key); }
 };
@@ -52,7 +53,8 @@ struct ExrHeader {
 };
 // Throws kiln::Error when the file cannot be opened as an image.
 ExrHeader read_exr_header(const std::string& path);
-// Any image OIIO reads (PNG references), as float RGB in [0,1] for 8-bit files.
+// EXR, PNG (float RGB, stored value / 255 or / 65535, no transfer curve), or any format OpenImageIO reads (through
+// the plugin). Throws kiln::Error naming the file when it cannot be read.
 Image read_image(const std::string& path);
 
 }  // namespace kiln

@@ -46,6 +46,18 @@ int main(int argc, char** argv) {
   render->add_option("--spp-range", ra.spp_range,
                      "Render only sample indices FIRST:LAST (LAST exclusive) of the frame; seeds follow the absolute "
                      "index, so parts from `kiln merge` equal a single run");
+  render->add_option("--filter", ra.filter,
+                     "Pixel filter NAME[:WIDTH], WIDTH the full width in pixels: box (default width 1), triangle (2), "
+                     "gaussian (3), blackman-harris (1.5, Cycles' default) or mitchell (4); default: the scene's "
+                     "filter, else box:1. gaussian:0.01 samples pixel centres");
+  render->add_option("--adaptive", ra.adaptive,
+                     "Adaptive sampling: stop each pixel once its noise estimate is below this threshold (Cycles' "
+                     "Noise Threshold, e.g. 0.01); --spp is then the maximum")
+      ->check(CLI::PositiveNumber);
+  render->add_option("--adaptive-min-spp", ra.adaptive_min_spp,
+                     "Samples every pixel takes before adaptive sampling may stop it (0: Cycles' automatic "
+                     "max(4, ceil(16 / threshold^0.3)), 64 at 0.01)")
+      ->capture_default_str();
   render->add_option("--aov", ra.aovs, "Extra EXR layers: albedo,normal,depth,position,variance (or all)");
   render->add_option("--time-limit", ra.time_limit,
                      "Render in waves of doubling spp until the next wave would exceed this many seconds (--spp caps it)");

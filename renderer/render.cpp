@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <mutex>
 
+#include "core/error.h"
+#include "renderer/pixel_filter.h"
+
 namespace kiln {
 namespace {
 
@@ -14,11 +17,13 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
-// Pixel sample position: the sampler's first dimension, stratified over the pixel's samples; the centre when the
-// rules sample a single-sample render there.
-Vec2f pixel_offset(const IntegratorSettings& settings, uint32_t spp_total, Sampler& sampler) {
+// Pixel sample offset from the pixel centre and its filter weight: the pixel filter's importance sample from the
+// sampler's first dimension, stratified over the pixel's samples; the centre when the rules sample a single-sample
+// render there (the course's convention).
+FilterSample pixel_offset(const IntegratorSettings& settings, uint32_t spp_total, const PixelFilter& filter,
+                          Sampler& sampler) {
   sampler.set_dimension(kPixelDimension);
-  return settings.centre_single_sample && spp_total <= 1 ? Vec2f{0.5f, 0.5f} : sampler.next_2d();
+  return settings.centre_single_sample && spp_total <= 1 ? FilterSample{} : filter.sample(sampler.next_2d());
 }
 
 class Progress {
@@ -65,6 +70,15 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
       tiles.push_back(Tile{x, y, std::min(x + ts, crop.x1), std::min(y + ts, crop.y1)});
   if (options.reverse_tile_order) std::reverse(tiles.begin(), tiles.end());
 
+  // Adaptive sampling decides from a pixel's samples 0..n-1, so every pixel must continue where it stopped.
+  if (options.adaptive)
+    for (int y = crop.y0; y < crop.y1; ++y)
+      for (int x = crop.x0; x < crop.x1; ++x)
+        if (const PixelSum& p = film.at(x, y); !p.converged && p.n != first)
+          throw Error("adaptive sampling: pixel " + std::to_string(x) + "," + std::to_string(y) + " holds " +
+                      std::to_string(p.n) + " samples but the render starts at sample " + std::to_string(first) +
+                      " (adaptive renders cannot be split into sample ranges)");
+  const PixelFilter filter(options.filter);
   std::vector<RenderStats> tile_stats(tiles.size());
   Progress progress(options.progress, tiles.size());
   // One task per tile; work stealing balances uneven tiles.
@@ -85,12 +99,12 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             break;
           }
           PixelSum& px = film.at(x, y);
-          for (uint32_t s = first; s < last; ++s) {
+          for (uint32_t s = first; s < last && !px.converged; ++s) {
             Sampler sampler(options.seed, uint32_t(x), uint32_t(y), s);
-            const Vec2f off = pixel_offset(settings, options.spp_total, sampler);
+            const FilterSample fs = pixel_offset(settings, options.spp_total, filter, sampler);
             sampler.set_dimension(kLensDimension);
             const Vec2f lens = sampler.next_2d();
-            const Ray ray = camera.generate_ray(float(x) + off.x, float(y) + off.y, lens);
+            const Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y, lens);
             sampler.set_dimension(kFirstPathDimension);
             Rgb L = trace(world, settings, ray, sampler, st.rays);
             if (!L.is_finite() || L.has_negative()) {
@@ -103,13 +117,20 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
               ++st.rays.nan_samples;
               L = Rgb(0.0f);
             }
+            L = L * fs.weight;
             px.r += L.r;
             px.g += L.g;
             px.b += L.b;
             const double lum = L.luminance();
             px.lum2 += lum * lum;
+            if (s % 2 == 0) {
+              px.even_r += L.r;
+              px.even_g += L.g;
+              px.even_b += L.b;
+            }
+            ++px.n;
+            if (options.adaptive && options.adaptive->check_due(px.n)) px.converged = options.adaptive->converged(px);
           }
-          px.n += last - first;
         }
       progress.tile_done();
     }

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <optional>
 
+#include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
 #include "renderer/film.h"
 #include "renderer/integrator.h"
@@ -22,6 +23,10 @@ struct RenderOptions {
   bool reverse_tile_order = false;     // for tests: the result must not depend on it
   bool progress = false;               // progress bar + ETA on stderr
   const std::atomic<bool>* cancel = nullptr;  // set asynchronously (SIGINT): finish started tiles, skip the rest
+  PixelFilterDesc filter;                     // pixel filter, by filter importance sampling (default: box, 1 px)
+  // Stop sampling a pixel once its noise estimate is below the threshold (renderer/adaptive_sampling.h). Needs
+  // every pixel's samples from index 0 in this film: not for --spp-range parts.
+  std::optional<AdaptiveSampling> adaptive;
 };
 
 struct RenderStats {

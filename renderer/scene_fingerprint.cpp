@@ -1,6 +1,8 @@
 #include "renderer/scene_fingerprint.h"
 
-#include <OpenImageIO/hash.h>
+// Header-only xxHash (Debian's libxxhash-dev): nothing to link, so the renderer stays free of OpenImageIO.
+#define XXH_INLINE_ALL
+#include <xxhash.h>
 
 #include <cstdio>
 
@@ -14,7 +16,7 @@ SceneDesc load_scene_fingerprinted(const std::string& path, const LoadOptions& o
   uint64_t bytes = 0;
   // Each file's hash seeds the next, so the order and the boundaries between files count too.
   const FileReadObserver observer([&](const std::string&, std::string_view data) {
-    h = OIIO::xxhash::XXH64(data.data(), data.size(), h);
+    h = XXH64(data.data(), data.size(), h);
     ++files;
     bytes += data.size();
   });

@@ -31,6 +31,9 @@ struct RenderArgs {
   std::optional<std::string> aovs;       // "albedo,normal,depth,position,variance"
   std::optional<double> time_limit;      // seconds
   std::optional<std::string> reference;  // EXR to report error against after every doubling of spp
+  std::optional<std::string> filter;     // "NAME[:WIDTH]" (renderer/pixel_filter.h); else the scene's, else box
+  std::optional<float> adaptive;         // adaptive sampling threshold (renderer/adaptive_sampling.h)
+  uint32_t adaptive_min_spp = 0;         // 0: Cycles' automatic minimum
 };
 
 int cmd_render(const RenderArgs& args);

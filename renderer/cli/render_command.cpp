@@ -13,6 +13,7 @@
 #include "renderer/aov.h"
 #include "renderer/cli/commands.h"
 #include "renderer/merge.h"
+#include "renderer/pixel_filter.h"
 #include "renderer/progressive.h"
 #include "renderer/image_io.h"
 #include "renderer/tonemap.h"
@@ -110,6 +111,24 @@ std::vector<AovLayer> crop_layers(std::vector<AovLayer> layers, int width, const
   return layers;
 }
 
+struct SampleCounts {
+  double mean = 0;                // samples per pixel, averaged over the rendered pixels
+  double converged_fraction = 0;  // pixels stopped by adaptive sampling
+};
+
+SampleCounts sample_counts(const Film& film, const Crop& c) {
+  SampleCounts s;
+  for (int y = c.y0; y < c.y1; ++y)
+    for (int x = c.x0; x < c.x1; ++x) {
+      s.mean += film.at(x, y).n;
+      s.converged_fraction += film.at(x, y).converged ? 1.0 : 0.0;
+    }
+  const double npx = double(c.x1 - c.x0) * double(c.y1 - c.y0);
+  s.mean /= npx;
+  s.converged_fraction /= npx;
+  return s;
+}
+
 }  // namespace
 
 int cmd_merge(const std::vector<std::string>& parts, const std::string& output) {
@@ -135,6 +154,11 @@ int cmd_render(const RenderArgs& args) {
   std::unique_ptr<tbb::global_control> threads;
   if (args.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(args.threads));
+
+  if (args.filter) (void)parse_pixel_filter(*args.filter);  // bad input is reported before any work
+  if (args.adaptive && args.spp_range)
+    throw Error("--adaptive", "", "cannot be combined with --spp-range: a pixel's stopping decision needs all its "
+                                  "samples from index 0");
 
   LoadOptions lo;
   lo.subdivide = args.subdivide;
@@ -189,6 +213,8 @@ int cmd_render(const RenderArgs& args) {
     ro.progress = !args.quiet;
     ro.cancel = &g_interrupted;
     ro.reverse_tile_order = args.reverse_tiles;
+    ro.filter = pixel_filter_for(*cd, args.filter);
+    if (args.adaptive) ro.adaptive = AdaptiveSampling{*args.adaptive, args.adaptive_min_spp};
     Film film(camera.width(), camera.height());
     if (!args.quiet)
       std::fprintf(stderr, "kiln: camera %s: %dx%d, %u spp, %s: %s\n", cd->id.c_str(), camera.width(), camera.height(),
@@ -231,6 +257,7 @@ int cmd_render(const RenderArgs& args) {
     const std::string exr = (std::filesystem::path(args.out_dir) / (stem + ".exr")).string();
     const std::string png = (std::filesystem::path(args.out_dir) / (stem + ".png")).string();
     const Image full = film.mean();
+    const SampleCounts counts = sample_counts(film, crop.value_or(Crop{0, camera.width(), 0, camera.height()}));
     std::vector<AovLayer> aovs;
     double aov_seconds = 0.0;
     if (aov_flags) {
@@ -256,7 +283,10 @@ int cmd_render(const RenderArgs& args) {
                      {"kiln:integrator", settings.describe()},
                      {"kiln:render_options", render_options(args)},
                      {"kiln:render_seconds", std::to_string(rs.seconds)},
+                     {"kiln:filter", describe_pixel_filter(ro.filter)},
+                     {"kiln:mean_spp", std::to_string(counts.mean)},
                      {"kiln:incomplete", rs.cancelled ? "true" : "false"}};
+    if (ro.adaptive) meta.emplace_back("kiln:adaptive_threshold", std::to_string(ro.adaptive->threshold));
     if (final_error) {
       meta.emplace_back("kiln:reference", *args.reference);
       meta.emplace_back("kiln:mse", std::to_string(final_error->mse));
@@ -296,7 +326,12 @@ int cmd_render(const RenderArgs& args) {
                                 {"mrays_per_second", mrays},
                                 {"ray_query_share", query_share},
                                 {"nan_samples", rs.rays.nan_samples},
+                                {"filter", describe_pixel_filter(ro.filter)},
+                                {"mean_spp", counts.mean},
                                 {"incomplete", rs.cancelled}};
+    if (ro.adaptive)
+      cam["adaptive"] = {{"threshold", ro.adaptive->threshold}, {"min_spp", ro.adaptive->min_samples()},
+                         {"converged_fraction", counts.converged_fraction}};
     if (final_error)
       cam["error"] = {{"reference", *args.reference}, {"mse", final_error->mse}, {"relmse", final_error->rel_mse},
                       {"rmse", final_error->rmse}, {"csv", csv_path}};
