@@ -24,14 +24,24 @@ Distribution1D::Distribution1D(std::span<const float> weights) : pmf_(weights.si
     for (double& c : cdf_) c /= total_;
 }
 
+namespace {
+constexpr size_t kLinearScanSize = 8;
+}  // namespace
+
 size_t Distribution1D::sample(float u, float* pmf, float* u_remapped) const {
   if (pmf_.empty() || total_ <= 0.0) {
     if (pmf) *pmf = 0.0f;
     return 0;
   }
-  // First index whose upper CDF bound exceeds u; zero-weight entries are never returned.
-  auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), double(u));
-  size_t i = size_t(std::distance(cdf_.begin() + 1, it));
+  // First index whose upper CDF bound exceeds u; zero-weight entries are never returned. Short tables (a scene's
+  // few lights, a light's few triangles: sampled at every path vertex) are scanned, which finds the same index.
+  const double ud = double(u);
+  size_t i = 0;
+  if (pmf_.size() <= kLinearScanSize) {
+    while (i + 1 < pmf_.size() && !(cdf_[i + 1] > ud)) ++i;
+  } else {
+    i = size_t(std::distance(cdf_.begin() + 1, std::upper_bound(cdf_.begin() + 1, cdf_.end(), ud)));
+  }
   i = std::min(i, pmf_.size() - 1);
   while (i > 0 && pmf_[i] == 0.0f) --i;
   if (pmf) *pmf = pmf_[i];

@@ -47,6 +47,8 @@ constexpr FilterName kFilterNames[] = {{"box", PixelFilterKind::Box, 1.0f},
 PixelFilter::PixelFilter(const PixelFilterDesc& desc) : desc_(desc) {
   const double r = desc_.radius;
   if (!(r > 0.0) || !std::isfinite(r)) throw Error("pixel filter: radius must be positive, got " + std::to_string(r));
+  gauss_s2_ = 2.0 * double(desc_.sigma) * double(desc_.sigma);
+  gauss_at_radius_ = std::exp(-r * r / gauss_s2_);
   switch (desc_.kind) {
     case PixelFilterKind::Box:
       g_integral_ = g_abs_integral_ = 2.0 * r;
@@ -89,10 +91,8 @@ float PixelFilter::profile(float x) const {
       return 1.0f;
     case PixelFilterKind::Triangle:
       return r - std::abs(x);
-    case PixelFilterKind::Gaussian: {
-      const double s2 = 2.0 * double(desc_.sigma) * double(desc_.sigma);
-      return float(std::max(0.0, std::exp(-double(x) * x / s2) - std::exp(-double(r) * r / s2)));
-    }
+    case PixelFilterKind::Gaussian:
+      return float(std::max(0.0, std::exp(-double(x) * x / gauss_s2_) - gauss_at_radius_));
     case PixelFilterKind::BlackmanHarris:
       return float(blackman_harris_1d(x, r));
     case PixelFilterKind::Mitchell:

@@ -53,6 +53,8 @@ class PixelFilter {
   double g_integral_ = 0, g_abs_integral_ = 0;
   std::vector<float> cdf_;       // kFilterTableSize + 1 entries, tabulated filters only
   std::vector<float> bin_pdf_;   // density of each bin (per pixel)
+  // Gaussian: 2 sigma^2 and G(r), computed once (profile() runs twice per camera sample).
+  double gauss_s2_ = 1.0, gauss_at_radius_ = 0.0;
 };
 
 // "NAME[:WIDTH]" with NAME box, triangle, gaussian, blackman-harris or mitchell and WIDTH the full width in pixels
