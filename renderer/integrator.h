@@ -81,6 +81,8 @@ struct RayCounters {
 inline constexpr uint32_t kPixelDimension = 0;
 inline constexpr uint32_t kLensDimension = 1;
 inline constexpr uint32_t kFirstPathDimension = 2;
+// The shutter time of a camera sample (motion blur), one per path: a dedicated stream (Sampler::dedicated_1d).
+inline constexpr uint32_t kTimeStream = 0x74696d65u;  // "time"
 
 // Radiance along a camera ray (the sampler is positioned at kFirstPathDimension).
 Rgb trace_path(const World& world, const PathSettings& s, uint32_t features, const Ray& ray, Sampler& sampler,

@@ -102,6 +102,11 @@ EllipsoidPdf ellipsoid_pdf(SceneRules rules, const RuleOverrides& o) {
                                                                   : EllipsoidPdf::Exact;
 }
 
+EnvMapSampling env_map_sampling(SceneRules rules, const RuleOverrides& o) {
+  return rules == SceneRules::Ceng795Course && !o.physical_lights ? EnvMapSampling::UniformHemisphere
+                                                                  : EnvMapSampling::ImportanceSampled;
+}
+
 IntegratorSettings camera_settings(const CameraDesc& camera, const SceneDesc& scene, SceneRules rules,
                                    const RuleOverrides& o, uint32_t features) {
   IntegratorSettings s;

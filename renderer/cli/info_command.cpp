@@ -43,6 +43,7 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
   WorldOptions wo;
   wo.build_accelerator = false;
   wo.ellipsoid_pdf = ellipsoid_pdf(rules, overrides);
+  wo.env_map_sampling = env_map_sampling(rules, overrides);
   const auto world = build_world(s, wo);
   std::printf("scene: %s (%s)\n", path.c_str(), s.format.c_str());
   std::printf("rules: %s\n", rules_name(rules));

@@ -175,6 +175,7 @@ int cmd_render(const RenderArgs& args) {
   WorldOptions wo;
   wo.accel = args.accel;
   wo.ellipsoid_pdf = ellipsoid_pdf(rules, args.rules);
+  wo.env_map_sampling = env_map_sampling(rules, args.rules);
   const uint32_t aov_flags = args.aovs ? parse_aovs(*args.aovs) : 0u;
   const auto world = build_world_taking_meshes(scene, wo);
   if (!args.quiet) {
