@@ -43,17 +43,19 @@ ImageInfiniteLight::ImageInfiniteLight(Image image, float scene_radius, EnvMapSa
   const int w = image_.width(), h = image_.height();
   std::vector<float> row_weights(static_cast<size_t>(h)), texel(static_cast<size_t>(w));
   columns_.reserve(size_t(h));
-  const double texel_solid_angle = (2.0 * kPi / w) * (kPi / h);  // times sin theta
   for (int y = 0; y < h; ++y) {
     const float sin_theta = std::sin(kPi * (float(y) + 0.5f) / float(h));
-    double row = 0.0;
+    double row = 0.0, row_luminance = 0.0;
     for (int x = 0; x < w; ++x) {
       texel[size_t(x)] = image_.at(x, y).luminance() * sin_theta;
       row += texel[size_t(x)];
+      row_luminance += image_.at(x, y).luminance();
     }
     columns_.emplace_back(texel);
     row_weights[size_t(y)] = float(row);
-    radiant_integral_ += row * texel_solid_angle;
+    // A texel of this row spans the solid angle (2 pi / w) (cos theta_top - cos theta_bottom).
+    const double band = std::cos(kPi * double(y) / h) - std::cos(kPi * double(y + 1) / h);
+    radiant_integral_ += row_luminance * (2.0 * kPi / w) * band;
   }
   rows_ = Distribution1D(row_weights);
 }
@@ -88,10 +90,11 @@ std::optional<LightSample> ImageInfiniteLight::sample_li(const LightQuery& q, Ve
     if (!(column_pmf > 0.0f)) return std::nullopt;
     const float uu = (float(x) + u_in) / float(image_.width()), vv = (float(y) + v_in) / float(image_.height());
     s.wi = direction(uu, vv);
-    const float sin_theta = std::sin(kPi * vv);
+    // The chosen texel's density: what pdf_direction gives wi (it maps wi back to the same texel, except within
+    // float rounding of a texel edge).
+    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - s.wi.y * s.wi.y));
     if (!(sin_theta > 0.0f)) return std::nullopt;
-    // The density of the texel the direction maps back to: the same expression pdf_direction evaluates.
-    s.pdf = importance_pdf(s.wi);
+    s.pdf = row_pmf * column_pmf * float(image_.width()) * float(image_.height()) / (2.0f * kPi * kPi * sin_theta);
   } else if (has_normal(q)) {
     const Frame frame(normalize(q.n));
     s.wi = normalize(frame.to_world(sample_uniform_hemisphere(u)));

@@ -56,7 +56,9 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
     for (int depth = start_depth;; ++depth) {
       const uint32_t dim = first_branch ? vertex_dimension(depth) : kBranchDimension;
       Hit hit;
-      if (!query_intersect(w, ray, hit, c, depth == 0)) {
+      const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
+                                                               : query_intersect(w, ray, hit, c, depth == 0);
+      if (!found) {
         if (depth == 0) L += beta * w.background;
         if (after_specular || !use_nee) L += beta * escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
         break;

@@ -8,9 +8,7 @@
 //   leaves a closed object, but not for paths that end inside, e.g. on the mirror floor the tree stands in);
 // - every spawned ray (shadow, reflection, refraction) starts ShadowRayEpsilon along the geometric normal on
 //   its side (CourseRaySettings::ray_epsilon; 0 falls back to Kiln's ulp-based offset).
-#include "renderer/integrator.h"
-#include "renderer/ray_query.h"
-#include "renderer/shading.h"
+#include "renderer/path_vertex.h"
 
 namespace kiln {
 namespace {
@@ -52,7 +50,11 @@ Rgb direct_from_lights(const World& w, const CourseRaySettings& s, const Surface
 Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, int depth, Sampler& sampler,
                     RayCounters& c) {
   Hit hit;
-  if (!query_intersect(w, ray, hit, c, depth == 0)) return w.background;
+  const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
+                                                           : query_intersect(w, ray, hit, c, depth == 0);
+  // Rays that leave see the environment (the map or a constant infinite light) in full: the ray tracer follows
+  // only delta directions, which light sampling cannot produce.
+  if (!found) return w.background + escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
   SurfaceInteraction si = make_interaction(w, ray, hit);
   const Vec3f wo = -ray.d;
   Rgb L(0.0f);

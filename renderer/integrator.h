@@ -36,12 +36,14 @@ struct CoursePathSettings {
   bool nee = false;
   CourseRoulette roulette = CourseRoulette::Off;
   int max_depth = 8;  // MaxRecursionDepth: the vertex at this depth still samples lights; < 0: unlimited (roulette)
+  bool cull_camera_backfaces = false;  // BackfaceCulling (README, "Course conventions")
 };
 
 // The CENG795 course's direct-lighting (Whitted-style) ray tracer (renderer/course_ray_tracer.cpp).
 struct CourseRaySettings {
   int max_depth = 5;          // recursion depth of mirror / dielectric / conductor rays
   float ray_epsilon = 1e-3f;  // ShadowRayEpsilon: secondary rays start this far along the normal
+  bool cull_camera_backfaces = false;  // BackfaceCulling (README, "Course conventions")
 };
 
 struct IntegratorSettings {
