@@ -12,6 +12,9 @@ struct Ray {
   Vec3f d;
   float tmin = 0.0f;
   float tmax = kInfinity;
+  // Instant within the shutter interval [0, 1): where motion-blurred shapes are (0 for scenes without motion blur).
+  // Every ray of a path carries the camera ray's time.
+  float time = 0.0f;
   Vec3f at(float t) const { return o + d * t; }
 };
 
@@ -32,15 +35,17 @@ inline Vec3f offset_ray_origin(Vec3f p, Vec3f ng, Vec3f w) {
   return p + n * offset;
 }
 
-// A ray leaving p (with geometric normal ng) towards w.
-inline Ray spawn_ray(Vec3f p, Vec3f ng, Vec3f w) { return Ray{offset_ray_origin(p, ng, w), w, 0.0f, kInfinity}; }
+// A ray leaving p (with geometric normal ng) towards w, at the instant `time` of the path.
+inline Ray spawn_ray(Vec3f p, Vec3f ng, Vec3f w, float time = 0.0f) {
+  return Ray{offset_ray_origin(p, ng, w), w, 0.0f, kInfinity, time};
+}
 
 // A shadow ray from p to target; stops just short of the target (target itself offset by its own normal when it
 // lies on a surface).
 inline constexpr float kShadowRayEndFraction = 1.0f - 1e-4f;
-inline Ray spawn_ray_to(Vec3f p, Vec3f ng, Vec3f target) {
+inline Ray spawn_ray_to(Vec3f p, Vec3f ng, Vec3f target, float time = 0.0f) {
   const Vec3f o = offset_ray_origin(p, ng, target - p);
-  return Ray{o, target - o, 0.0f, kShadowRayEndFraction};
+  return Ray{o, target - o, 0.0f, kShadowRayEndFraction, time};
 }
 
 }  // namespace kiln

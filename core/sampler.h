@@ -78,6 +78,9 @@ inline float unit_float(uint32_t bits) {
 }
 
 class Sampler {
+  // Keeps dedicated streams apart from the numbered dimensions' hashes.
+  static constexpr uint64_t kDedicatedStreamKey = 0x9e3779b97f4a7c15ull;
+
  public:
   Sampler(uint64_t seed, uint32_t px, uint32_t py, uint64_t sample_index)
       : key_(mix64(seed ^ mix64((uint64_t(py) << 32) | px))),
@@ -94,6 +97,14 @@ class Sampler {
   float next_float() {
     if (dim_ >= kStratifiedDimensions) return rng_.next_float();
     const uint64_t h = mix64(key_ ^ (uint64_t(dim_++) << 1));
+    const uint32_t shuffled = reverse_bits(laine_karras(reversed_index_, uint32_t(h)));
+    return unit_float(reverse_bits(laine_karras(shuffled, uint32_t(h >> 32))));
+  }
+  // A value of a dedicated stream outside the dimension sequence (e.g. the shutter time): stratified over the
+  // pixel's samples like a dimension, but reading it neither advances the dimension nor draws from the independent
+  // tail, so a renderer that asks for it leaves every other value (and the image of a scene that never asks) as is.
+  float dedicated_1d(uint32_t stream) const {
+    const uint64_t h = mix64(key_ ^ (uint64_t(stream) << 1) ^ kDedicatedStreamKey);
     const uint32_t shuffled = reverse_bits(laine_karras(reversed_index_, uint32_t(h)));
     return unit_float(reverse_bits(laine_karras(shuffled, uint32_t(h >> 32))));
   }

@@ -9,6 +9,7 @@
 #include "core/vec.h"
 #include "lights/area_light.h"
 #include "lights/directional_light.h"
+#include "lights/image_infinite_light.h"
 #include "lights/infinite_light.h"
 #include "lights/light_sample.h"
 #include "lights/mesh_light.h"
@@ -18,7 +19,8 @@
 
 namespace kiln {
 
-using Light = std::variant<PointLight, SpotLight, DirectionalLight, AreaLight, MeshLight, SphereLight, InfiniteLight>;
+using Light = std::variant<PointLight, SpotLight, DirectionalLight, AreaLight, MeshLight, SphereLight, InfiniteLight,
+                           ImageInfiniteLight>;
 
 std::optional<LightSample> sample_li(const Light& light, const LightQuery& q, Vec2f u);
 // Solid-angle pdf that sample_li would produce the point p_light (with surface normal n_light, on triangle

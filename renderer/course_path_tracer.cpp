@@ -56,7 +56,9 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
     for (int depth = start_depth;; ++depth) {
       const uint32_t dim = first_branch ? vertex_dimension(depth) : kBranchDimension;
       Hit hit;
-      if (!query_intersect(w, ray, hit, c, depth == 0)) {
+      const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
+                                                               : query_intersect(w, ray, hit, c, depth == 0);
+      if (!found) {
         if (depth == 0) L += beta * w.background;
         if (after_specular || !use_nee) L += beta * escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
         break;
@@ -93,7 +95,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
       const bool split = kDelta && m.has_delta() && n_split + 2 <= kMaxSplitBranches;
 
       if (use_nee && m.has_surface())
-        if (const auto dl = sample_direct_light(w, si, frame, wo, wo_l, dim, sampler, c))
+        if (const auto dl = sample_direct_light(w, si, frame, wo, wo_l, dim, ray.time, sampler, c))
           L += beta * dl->value * (1.0f + extra);
       if (last_vertex) break;
 
@@ -109,7 +111,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
             const Rgb bb = beta * branches[i].weight;
             if (!consistent_sides(si, wo, wb, wo_l, *wb_l) || bb.is_black() || !bb.is_finite()) continue;
             const float es = branches[i].transmission ? eta_scale * sqr(branches[i].etap) : eta_scale;
-            pending[n_pending++] = PathBranch{spawn_ray(si.p, si.ng, wb), bb, potential, es, depth + 1};
+            pending[n_pending++] = PathBranch{spawn_ray(si.p, si.ng, wb, ray.time), bb, potential, es, depth + 1};
             ++n_split;
           }
         }
@@ -135,7 +137,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
         if (sampler.next_float() >= survive) break;
         beta *= 1.0f / survive;
       }
-      ray = spawn_ray(si.p, si.ng, wi);
+      ray = spawn_ray(si.p, si.ng, wi, ray.time);
     }
     if (n_pending == 0) break;
     const PathBranch& b = pending[--n_pending];
@@ -155,7 +157,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
 Rgb trace_course_path(const World& w, const CoursePathSettings& s, uint32_t features, const Ray& ray,
                       Sampler& sampler, RayCounters& c) {
   const bool delta = features & kFeatureDelta, dielectric = features & kFeatureDielectric;
-  if (!(features & (kFeatureSpheres | kFeatureInstances))) {
+  if (!(features & (kFeatureSpheres | kFeatureInstances | kFeatureMotionBlur))) {
     if (dielectric) return trace_course_path_impl<true, true, true>(w, s, ray, sampler, c);
     if (delta) return trace_course_path_impl<true, false, true>(w, s, ray, sampler, c);
     return trace_course_path_impl<false, false, true>(w, s, ray, sampler, c);

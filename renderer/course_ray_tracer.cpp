@@ -8,29 +8,28 @@
 //   leaves a closed object, but not for paths that end inside, e.g. on the mirror floor the tree stands in);
 // - every spawned ray (shadow, reflection, refraction) starts ShadowRayEpsilon along the geometric normal on
 //   its side (CourseRaySettings::ray_epsilon; 0 falls back to Kiln's ulp-based offset).
-#include "renderer/integrator.h"
-#include "renderer/ray_query.h"
-#include "renderer/shading.h"
+#include "renderer/path_vertex.h"
 
 namespace kiln {
 namespace {
 
 // A ray leaving si towards wi: the course's fixed offset along the normal, or Kiln's robust one.
-Ray spawn_course_ray(const SurfaceInteraction& si, Vec3f wi, float epsilon) {
-  if (!(epsilon > 0.0f)) return spawn_ray(si.p, si.ng, wi);
+// time: the path's instant (the camera ray's).
+Ray spawn_course_ray(const SurfaceInteraction& si, Vec3f wi, float epsilon, float time) {
+  if (!(epsilon > 0.0f)) return spawn_ray(si.p, si.ng, wi, time);
   const Vec3f n = dot(si.ng, wi) < 0.0f ? -si.ng : si.ng;
-  return Ray{si.p + n * epsilon, wi, 0.0f, kInfinity};
+  return Ray{si.p + n * epsilon, wi, 0.0f, kInfinity, time};
 }
 
-Ray spawn_course_shadow_ray(const SurfaceInteraction& si, Vec3f target, float epsilon) {
-  if (!(epsilon > 0.0f)) return spawn_ray_to(si.p, si.ng, target);
+Ray spawn_course_shadow_ray(const SurfaceInteraction& si, Vec3f target, float epsilon, float time) {
+  if (!(epsilon > 0.0f)) return spawn_ray_to(si.p, si.ng, target, time);
   const Vec3f n = dot(si.ng, target - si.p) < 0.0f ? -si.ng : si.ng;
   const Vec3f o = si.p + n * epsilon;
-  return Ray{o, target - o, 0.0f, kShadowRayEndFraction};
+  return Ray{o, target - o, 0.0f, kShadowRayEndFraction, time};
 }
 
 Rgb direct_from_lights(const World& w, const CourseRaySettings& s, const SurfaceInteraction& si,
-                       const Frame& frame, Vec3f wo, Sampler& sampler, RayCounters& c) {
+                       const Frame& frame, Vec3f wo, float time, Sampler& sampler, RayCounters& c) {
   Rgb sum(0.0f);
   const Vec3f wo_l = frame.to_local(wo);
   for (const Light& light : w.lights) {
@@ -41,7 +40,7 @@ Rgb direct_from_lights(const World& w, const CourseRaySettings& s, const Surface
     const Vec3f wi_l = frame.to_local(ls->wi);
     const Rgb f = si.material->eval(wo_l, wi_l);
     if (f.is_black()) continue;
-    const Ray shadow = spawn_course_shadow_ray(si, ls->p_light, s.ray_epsilon);
+    const Ray shadow = spawn_course_shadow_ray(si, ls->p_light, s.ray_epsilon, time);
     if (query_occluded(w, shadow, c)) continue;
     sum += f * ls->li * (abs_cos_theta(wi_l) / ls->pdf);
   }
@@ -51,7 +50,11 @@ Rgb direct_from_lights(const World& w, const CourseRaySettings& s, const Surface
 Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, int depth, Sampler& sampler,
                     RayCounters& c) {
   Hit hit;
-  if (!query_intersect(w, ray, hit, c, depth == 0)) return w.background;
+  const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
+                                                           : query_intersect(w, ray, hit, c, depth == 0);
+  // Rays that leave see the environment (the map or a constant infinite light) in full: the ray tracer follows
+  // only delta directions, which light sampling cannot produce.
+  if (!found) return w.background + escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
   SurfaceInteraction si = make_interaction(w, ray, hit);
   const Vec3f wo = -ray.d;
   Rgb L(0.0f);
@@ -64,7 +67,7 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
   const Frame frame(si.ns);
   if (!inside_dielectric) {
     L += m.ambient * w.ambient;
-    if (m.has_surface()) L += direct_from_lights(w, s, si, frame, wo, sampler, c);
+    if (m.has_surface()) L += direct_from_lights(w, s, si, frame, wo, ray.time, sampler, c);
   }
   if (m.has_delta() && depth < s.max_depth) {
     DeltaBranch branches[2];
@@ -75,7 +78,7 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
       const Vec3f wi = frame.to_world(*wi_l);
       // Undo the radiance scaling: the course weighs refraction by 1 - F alone.
       const Rgb weight = branches[i].transmission ? branches[i].weight * sqr(branches[i].etap) : branches[i].weight;
-      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.ray_epsilon), depth + 1, sampler, c);
+      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.ray_epsilon, ray.time), depth + 1, sampler, c);
     }
   }
   return L * attenuation;

@@ -13,7 +13,8 @@ std::string describe_features(uint32_t mask) {
       {kFeatureAmbient, "ambient"},         {kFeatureGlossy, "glossy"},
       {kFeatureDelta, "delta"},             {kFeatureDielectric, "dielectric"},
       {kFeatureTextures, "textures"},       {kFeatureDepthOfField, "depth-of-field"},
-      {kFeatureInfiniteLights, "infinite-lights"},
+      {kFeatureInfiniteLights, "infinite-lights"}, {kFeatureMotionBlur, "motion-blur"},
+      {kFeatureEnvironmentMap, "environment-map"},  {kFeatureBackfaceCulling, "backface-culling"},
   };
   std::string s;
   for (const auto& [bit, name] : kNames)

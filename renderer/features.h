@@ -22,6 +22,9 @@ enum Feature : uint32_t {
   kFeatureTextures = 1u << 12,        // parsed but not rendered yet
   kFeatureDepthOfField = 1u << 13,
   kFeatureInfiniteLights = 1u << 14,  // rays that leave the scene see light
+  kFeatureMotionBlur = 1u << 15,      // moving shapes: camera rays take a time sample, accelerators are time-varying
+  kFeatureEnvironmentMap = 1u << 16,  // an image-based infinite light (lat-long environment map)
+  kFeatureBackfaceCulling = 1u << 17, // camera rays skip triangles facing away from them (course rules)
   kFeatureAll = 0xffffffffu,
 };
 

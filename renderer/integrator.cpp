@@ -24,11 +24,13 @@ std::string describe_method(const CoursePathSettings& s) {
                          : s.roulette == CourseRoulette::Expected ? "+course-rr(expected)"
                                                                   : "";
   return std::string("course path tracer: ") + (s.importance_sampling ? "brdf" : "uniform") + (s.nee ? "+nee" : "") +
-         roulette + "+fresnel-split, max depth " + depth_of(s.max_depth);
+         roulette + "+fresnel-split" + (s.cull_camera_backfaces ? "+backface-culling" : "") + ", max depth " +
+         depth_of(s.max_depth);
 }
 
 std::string describe_method(const CourseRaySettings& s) {
-  return "course ray tracer, depth " + std::to_string(s.max_depth);
+  return std::string("course ray tracer") + (s.cull_camera_backfaces ? " (backface culling)" : "") + ", depth " +
+         std::to_string(s.max_depth);
 }
 
 }  // namespace

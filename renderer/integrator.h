@@ -36,12 +36,14 @@ struct CoursePathSettings {
   bool nee = false;
   CourseRoulette roulette = CourseRoulette::Off;
   int max_depth = 8;  // MaxRecursionDepth: the vertex at this depth still samples lights; < 0: unlimited (roulette)
+  bool cull_camera_backfaces = false;  // BackfaceCulling (README, "Course conventions")
 };
 
 // The CENG795 course's direct-lighting (Whitted-style) ray tracer (renderer/course_ray_tracer.cpp).
 struct CourseRaySettings {
   int max_depth = 5;          // recursion depth of mirror / dielectric / conductor rays
   float ray_epsilon = 1e-3f;  // ShadowRayEpsilon: secondary rays start this far along the normal
+  bool cull_camera_backfaces = false;  // BackfaceCulling (README, "Course conventions")
 };
 
 struct IntegratorSettings {
@@ -81,6 +83,8 @@ struct RayCounters {
 inline constexpr uint32_t kPixelDimension = 0;
 inline constexpr uint32_t kLensDimension = 1;
 inline constexpr uint32_t kFirstPathDimension = 2;
+// The shutter time of a camera sample (motion blur), one per path: a dedicated stream (Sampler::dedicated_1d).
+inline constexpr uint32_t kTimeStream = 0x74696d65u;  // "time"
 
 // Radiance along a camera ray (the sampler is positioned at kFirstPathDimension).
 Rgb trace_path(const World& world, const PathSettings& s, uint32_t features, const Ray& ray, Sampler& sampler,

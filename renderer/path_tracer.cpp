@@ -63,7 +63,7 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
     const uint32_t dim = vertex_dimension(depth);
 
     if (use_nee && m.has_surface()) {
-      if (const auto dl = sample_direct_light(w, si, frame, wo, wo_l, dim, sampler, c)) {
+      if (const auto dl = sample_direct_light(w, si, frame, wo, wo_l, dim, ray.time, sampler, c)) {
         const float weight =
             s.mis && !dl->delta
                 ? power_heuristic(dl->light_pdf, direction_pdf<kDelta>(s.directions, m, wo_l, dl->wi_local, false))
@@ -90,7 +90,7 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
       if (sampler.next_float() >= survive) break;
       beta *= 1.0f / survive;
     }
-    ray = spawn_ray(si.p, si.ng, wi);
+    ray = spawn_ray(si.p, si.ng, wi, ray.time);
   }
   return L;
 }
@@ -100,7 +100,7 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
 Rgb trace_path(const World& w, const PathSettings& s, uint32_t features, const Ray& ray, Sampler& sampler,
                RayCounters& c) {
   const bool delta = features & kFeatureDelta, dielectric = features & kFeatureDielectric;
-  if (!(features & (kFeatureSpheres | kFeatureInstances))) {
+  if (!(features & (kFeatureSpheres | kFeatureInstances | kFeatureMotionBlur))) {
     if (dielectric) return trace_path_impl<true, true, true>(w, s, ray, sampler, c);
     if (delta) return trace_path_impl<true, false, true>(w, s, ray, sampler, c);
     return trace_path_impl<false, false, true>(w, s, ray, sampler, c);

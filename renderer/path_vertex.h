@@ -100,8 +100,9 @@ struct DirectLight {
 
 // Draws from kLightChoiceDimension and kLightPointDimension of the vertex starting at `dim`. Empty when the light
 // is occluded, faces away or the BSDF does not scatter towards it.
+// time: the path's instant (the shadow ray's).
 inline std::optional<DirectLight> sample_direct_light(const World& w, const SurfaceInteraction& si, const Frame& frame,
-                                                      Vec3f wo, Vec3f wo_l, uint32_t dim, Sampler& sampler,
+                                                      Vec3f wo, Vec3f wo_l, uint32_t dim, float time, Sampler& sampler,
                                                       RayCounters& c) {
   sampler.set_dimension(dim + kLightChoiceDimension);
   float pmf = 0.0f;
@@ -113,20 +114,31 @@ inline std::optional<DirectLight> sample_direct_light(const World& w, const Surf
   const Vec3f wi_l = frame.to_local(ls->wi);
   if (!consistent_sides(si, wo, ls->wi, wo_l, wi_l)) return std::nullopt;
   const Rgb f = si.material->eval(wo_l, wi_l);
-  if (f.is_black() || query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light), c)) return std::nullopt;
+  if (f.is_black() || query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light, time), c)) return std::nullopt;
   const float light_pdf = ls->pdf * pmf;
   return DirectLight{f * ls->li * (abs_cos_theta(wi_l) / light_pdf), light_pdf, wi_l, ls->delta};
 }
 
 // Radiance that infinite lights send along a ray leaving the scene in direction d, each weighted by weight(light
 // index, the density with which NEE from `from` would have chosen d).
+// Infinite lights are constant (InfiniteLight) or an environment map (ImageInfiniteLight).
 template <typename Weight>
 Rgb escaped_radiance(const World& w, Vec3f d, const LightQuery& from, Weight&& weight) {
   Rgb le(0.0f);
   const Vec3f dir = normalize(d);
   for (const int i : w.infinite_lights) {
-    const InfiniteLight& light = std::get<InfiniteLight>(w.lights[size_t(i)]);
-    le += light.radiance(dir) * weight(light.pdf_direction(from, dir) * w.light_selector.pmf(size_t(i)));
+    const float pmf = w.light_selector.pmf(size_t(i));
+    le += std::visit(
+        [&](const auto& light) -> Rgb {
+          using L = std::decay_t<decltype(light)>;
+          if constexpr (std::is_same_v<L, InfiniteLight> || std::is_same_v<L, ImageInfiniteLight>) {
+            const Rgb l = light.radiance(dir);
+            return l.is_black() ? l : l * weight(light.pdf_direction(from, dir) * pmf);
+          } else {
+            return Rgb(0.0f);
+          }
+        },
+        w.lights[size_t(i)]);
   }
   return le;
 }

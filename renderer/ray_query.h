@@ -25,6 +25,22 @@ inline bool query_intersect(const World& w, const Ray& r, Hit& hit, RayCounters&
   return h;
 }
 
+// Bounds the triangles one camera ray may pass through under backface culling (a ray through a dense mesh from
+// behind); past it the ray is taken to miss.
+inline constexpr int kMaxCulledHits = 256;
+
+// A camera ray under backface culling (the course's BackfaceCulling): triangles whose (v1-v0)x(v2-v0) normal faces
+// away from the ray are passed through; spheres, closed and seen from outside, are never culled.
+inline bool query_camera_culled(const World& w, const Ray& r, Hit& hit, RayCounters& c) {
+  Ray ray = r;
+  for (int i = 0; i < kMaxCulledHits; ++i) {
+    if (!query_intersect(w, ray, hit, c, i == 0)) return false;
+    if (w.geometry.shapes[hit.shape].kind == ShapeKind::Sphere || dot(hit.ng, ray.d) < 0.0f) return true;
+    ray.tmin = std::nextafter(hit.t, kInfinity);
+  }
+  return false;
+}
+
 inline bool query_occluded(const World& w, const Ray& r, RayCounters& c) {
   const uint64_t t0 = __rdtsc();
   const bool o = w.accel->occluded(r);

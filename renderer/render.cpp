@@ -104,7 +104,9 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             const FilterSample fs = pixel_offset(settings, options.spp_total, filter, sampler);
             sampler.set_dimension(kLensDimension);
             const Vec2f lens = sampler.next_2d();
-            const Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y, lens);
+            Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y, lens);
+            // Only a scene with motion takes a time sample (from a dedicated stream: other values are unchanged).
+            if (settings.features & kFeatureMotionBlur) ray.time = sampler.dedicated_1d(kTimeStream);
             sampler.set_dimension(kFirstPathDimension);
             Rgb L = trace(world, settings, ray, sampler, st.rays);
             if (!L.is_finite() || L.has_negative()) {

@@ -14,6 +14,9 @@ inline constexpr int kCourseDefaultPathDepth = 8;
 // The course framework's ShadowRayEpsilon when a scene gives none (its parser's default).
 inline constexpr float kCourseDefaultShadowRayEpsilon = 1e-3f;
 inline constexpr char kRrSuffix[] = "+rr";
+// Whether the course renderer culls back faces for camera rays when a scene does not say (README, "Course
+// conventions").
+inline constexpr bool kCourseCullsCameraBackfaces = false;
 
 bool is_course(SceneRules r) { return r != SceneRules::Kiln; }
 
@@ -37,11 +40,13 @@ IntegratorSettings ceng795_camera(const CameraDesc& camera, const SceneDesc& sce
     CourseRaySettings s;
     s.max_depth = o.max_depth.value_or(scene.max_recursion_depth.value_or(kCourseDefaultRecursion));
     s.ray_epsilon = scene.shadow_ray_epsilon.value_or(kCourseDefaultShadowRayEpsilon);
+    s.cull_camera_backfaces = scene.backface_culling.value_or(kCourseCullsCameraBackfaces);
     return s;
   }
   CoursePathSettings s;
   s.importance_sampling = camera.pt.importance_sampling;
   s.nee = camera.pt.next_event_estimation;
+  s.cull_camera_backfaces = scene.backface_culling.value_or(kCourseCullsCameraBackfaces);
   const bool roulette = o.russian_roulette.value_or(camera.pt.russian_roulette);
   s.roulette = roulette ? course_roulette_mode(o) : CourseRoulette::Off;
   // The course's roulette replaces its depth cap.
@@ -100,6 +105,11 @@ SceneRules resolve_rules(const SceneDesc& scene, const RuleOverrides& o) {
 EllipsoidPdf ellipsoid_pdf(SceneRules rules, const RuleOverrides& o) {
   return rules == SceneRules::Ceng795Course && !o.physical_lights ? EllipsoidPdf::CourseObjectSpace
                                                                   : EllipsoidPdf::Exact;
+}
+
+EnvMapSampling env_map_sampling(SceneRules rules, const RuleOverrides& o) {
+  return rules == SceneRules::Ceng795Course && !o.physical_lights ? EnvMapSampling::UniformHemisphere
+                                                                  : EnvMapSampling::ImportanceSampled;
 }
 
 IntegratorSettings camera_settings(const CameraDesc& camera, const SceneDesc& scene, SceneRules rules,

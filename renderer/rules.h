@@ -37,6 +37,10 @@ SceneRules resolve_rules(const SceneDesc& scene, const RuleOverrides& overrides)
 // The density ellipsoid lights sample with under the rule set (the world is built with it).
 EllipsoidPdf ellipsoid_pdf(SceneRules rules, const RuleOverrides& overrides);
 
+// How environment maps are sampled under the rule set: the CENG795 course's uniform hemisphere (pdf 1/2pi, its
+// spec) or Kiln's luminance-proportional importance sampling (also the course's with --physical-lights).
+EnvMapSampling env_map_sampling(SceneRules rules, const RuleOverrides& overrides);
+
 // The integrator and its settings for one camera. features: the world's feature mask.
 IntegratorSettings camera_settings(const CameraDesc& camera, const SceneDesc& scene, SceneRules rules,
                                    const RuleOverrides& overrides, uint32_t features);

@@ -10,8 +10,6 @@ namespace {
 // Offset inside the log-average so that black pixels do not send it to zero (Reinhard 2002's delta).
 constexpr double kLogAverageDelta = 1e-5;
 
-float srgb_encode(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
-
 uint8_t quantize(float v01) { return uint8_t(std::clamp(std::lround(std::clamp(v01, 0.0f, 1.0f) * 255.0f), 0L, 255L)); }
 
 std::vector<uint8_t> photographic(const Image& img, const TonemapDesc& tm) {
@@ -54,6 +52,8 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
+float srgb_encode(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
+
 PreviewSettings preview_for_camera(const CameraDesc& camera, const SceneDesc& scene) {
   PreviewSettings p;
   if (camera.tonemap) {
@@ -65,6 +65,9 @@ PreviewSettings preview_for_camera(const CameraDesc& camera, const SceneDesc& sc
     p.gamma = 2.2f;
   } else if (ends_with(camera.image_name, ".png") || ends_with(camera.image_name, ".ppm")) {
     p.kind = PreviewKind::CourseLdr;
+    p.course_ldr_srgb = camera.srgb_without_tonemap;
+  } else if (camera.srgb_without_tonemap) {
+    p.kind = PreviewKind::ClampGamma;  // an .exr name: clamp to [0, 1], then the sRGB curve (the default encoding)
   }
   return p;
 }
@@ -79,6 +82,7 @@ std::vector<uint8_t> to_ldr(const Image& img, const PreviewSettings& s) {
       float e;
       if (s.kind == PreviewKind::CourseLdr) {
         e = v / 255.0f;  // radiance is already on the 0-255 scale (spec §10)
+        if (s.course_ldr_srgb) e = srgb_encode(std::clamp(e, 0.0f, 1.0f));
       } else {
         const float cl = std::clamp(v, 0.0f, 1.0f);
         e = s.srgb ? srgb_encode(cl) : std::pow(cl, 1.0f / s.gamma);

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "renderer/image_io.h"
 #include "scenes/material_mapping.h"
 
 namespace kiln {
@@ -69,6 +70,31 @@ void check_material(const SceneDesc& scene, int material, const std::string& nam
 
 // The 2019 files spell the square light's radiance <Intensity>; a 2019 student renamed it Radiance and the 2021
 // version of the same scene says Radiance, so both are read as radiance L (README, "Light conventions").
+// The motion a shape gets. Lights are sampled where they are at time 0, so an emitter keeps still (with a warning)
+// rather than be found by rays where its samples are not.
+Vec3f shape_motion(World& w, const std::string& name, Vec3f motion, int light) {
+  if (motion == Vec3f(0.0f)) return motion;
+  if (light >= 0) {
+    w.warnings.push_back(name + ": MotionBlur on an emitter is not rendered; it stays at its time-0 position");
+    return Vec3f(0.0f);
+  }
+  w.features |= kFeatureMotionBlur;
+  w.geometry.has_motion = true;
+  ++w.stats.moving_shapes;
+  return motion;
+}
+
+// EXR directly, other formats through the OpenImageIO plugin; a file that cannot be read names the scene element.
+Image read_environment_map(const SceneDesc& scene, const EnvLightDesc& env) {
+  try {
+    Image img = read_image(env.image_path);
+    if (img.width() <= 0 || img.height() <= 0) throw Error(env.image_path, "", "the image is empty");
+    return img;
+  } catch (const Error& e) {
+    throw Error(scene.source_path, env.element, std::string("environment map: ") + e.what());
+  }
+}
+
 AreaLight make_area_light(const AreaLightDesc& d) {
   if (d.edges) return AreaLight::parallelogram(d.position, (*d.edges)[0], (*d.edges)[1], d.radiance);
   return AreaLight::square(d.position, d.normal, d.size, d.radiance);
@@ -152,7 +178,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     }
     w.stats.triangles += tm.triangle_count();
     ++w.stats.meshes;
-    g.shapes.push_back(Shape{ShapeKind::Mesh, uint32_t(g.meshes.size())});
+    g.shapes.push_back(Shape{ShapeKind::Mesh, uint32_t(g.meshes.size()), shape_motion(w, m.name, m.motion, sd.light)});
     g.meshes.push_back(std::move(tm));
     w.shape_data.push_back(sd);
     w.features |= kFeatureTriangles;
@@ -172,7 +198,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       w.features |= kFeatureSphereLights;
       w.stats.cone_sampler_built = true;
     }
-    g.shapes.push_back(Shape{ShapeKind::Sphere, uint32_t(g.spheres.size())});
+    g.shapes.push_back(Shape{ShapeKind::Sphere, uint32_t(g.spheres.size()), shape_motion(w, s.name, s.motion, sd.light)});
     g.spheres.push_back(SphereShape{s.center, s.radius, s.to_world});
     w.shape_data.push_back(sd);
     w.features |= kFeatureSpheres;
@@ -200,7 +226,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       sd.normals = pn;
       w.features |= kFeatureSmoothNormals;
     }
-    g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size())});
+    g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w, inst.name, inst.motion, -1)});
     g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
     w.shape_data.push_back(sd);
     w.stats.triangles += g.prototypes[size_t(proto)].triangle_count();
@@ -235,6 +261,12 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     w.lights.emplace_back(InfiniteLight(l.radiance, w.scene_radius));
     ++w.stats.infinite_lights;
     w.features |= kFeatureInfiniteLights;
+  }
+  for (const EnvLightDesc& l : scene.env_lights) {
+    w.infinite_lights.push_back(int(w.lights.size()));
+    w.lights.emplace_back(ImageInfiniteLight(read_environment_map(scene, l), w.scene_radius, options.env_map_sampling));
+    ++w.stats.environment_maps;
+    w.features |= kFeatureInfiniteLights | kFeatureEnvironmentMap;
   }
   if (!w.lights.empty()) {
     w.light_selector = LightSelector(w.lights, options.light_selection);

@@ -26,8 +26,9 @@ struct ShapeData {
 
 struct WorldStats {
   size_t meshes = 0, triangles = 0, spheres = 0, instances = 0;
+  size_t moving_shapes = 0;  // MotionBlur: shapes built as time-varying geometry
   size_t point_lights = 0, spot_lights = 0, directional_lights = 0, area_lights = 0, mesh_lights = 0,
-         sphere_lights = 0, infinite_lights = 0;
+         sphere_lights = 0, infinite_lights = 0, environment_maps = 0;
   size_t materials = 0;
   std::map<std::string, size_t> compiled_materials;  // Material::describe() -> how many materials compiled to it
   size_t interface_shapes = 0;  // shapes left out because their material only marks a boundary (pbrt "interface")
@@ -60,6 +61,7 @@ struct WorldOptions {
   LightSelection light_selection = LightSelection::PowerProportional;
   bool build_accelerator = true;  // kiln info only needs the description and the feature mask
   EllipsoidPdf ellipsoid_pdf = EllipsoidPdf::Exact;  // the rule set's (renderer/rules.h)
+  EnvMapSampling env_map_sampling = EnvMapSampling::ImportanceSampled;  // the rule set's (renderer/rules.h)
 };
 
 // Throws kiln::Error on inconsistent descriptions (dangling material indices etc.).

@@ -61,6 +61,7 @@ struct CameraDesc {
   bool disk_lens = false;      // aperture_size is the diameter of a disk lens (pbrt lensradius) instead of a square's side
   bool left_handed = false;
   std::optional<TonemapDesc> tonemap;
+  bool srgb_without_tonemap = false;  // 2018 GammaCorrection sRGB without a Tonemap: the LDR preview is sRGB-encoded
   RendererKind renderer = RendererKind::RayTracing;
   bool renderer_explicit = false;  // the scene named a renderer (else Kiln's default applies)
   PathTracingFlags pt;
@@ -133,6 +134,7 @@ struct MeshDesc {
   bool is_instance_base = false;  // referenced by a MeshInstance (kept in object space for instancing)
   bool visible = true;            // false: only a prototype for instances, not itself in the scene
   int subdivide = 0;              // Loop subdivision levels requested for this mesh
+  Vec3f motion{0, 0, 0};          // MotionBlur: world-space translation over the shutter interval (at time t: t * motion)
 };
 
 struct SphereDesc {
@@ -142,6 +144,7 @@ struct SphereDesc {
   Transform to_world;  // applied after centring: world = to_world * translate(center) * scale(radius)
   int material = -1;
   std::optional<Rgb> emission;  // LightSphere radiance
+  Vec3f motion{0, 0, 0};        // MotionBlur (see MeshDesc::motion)
 };
 
 struct InstanceDesc {
@@ -150,6 +153,7 @@ struct InstanceDesc {
   Transform to_world;     // full object->world (resetTransform already resolved)
   int material = -1;
   std::optional<bool> smooth;
+  Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
 };
 
 struct PointLightDesc { Vec3f position; Rgb intensity; };
@@ -169,7 +173,12 @@ struct AreaLightDesc {
   Rgb radiance;
   bool radiance_is_intensity = false;  // 2019 <Intensity> spelling (see README for the convention)
 };
-struct EnvLightDesc { std::string image_path; };
+// Lat-long HDR map on an infinitely distant sphere (CENG795 SphericalDirectionalLight); `element` names the XML
+// element (with its line) for messages about the image.
+struct EnvLightDesc {
+  std::string image_path;
+  std::string element;
+};
 // Constant radiance arriving from every direction (pbrt "infinite" light with "L"), seen by rays that escape.
 struct InfiniteLightDesc { Rgb radiance; };
 
@@ -194,6 +203,9 @@ struct SceneDesc {
   std::vector<AreaLightDesc> area_lights;
   std::vector<EnvLightDesc> env_lights;
   std::vector<InfiniteLightDesc> infinite_lights;
+  // Whether triangles facing away from camera rays are skipped (CENG795 BackfaceCulling); unset: the rule set's
+  // default (README, "Course conventions").
+  std::optional<bool> backface_culling;
   bool png_gamma_encode = false;  // CS171: the PNG preview applies gamma 2.2 (no tonemap)
   // Features present in the file that the renderer does not render yet (e.g. "textures", "motion blur");
   // reported by `kiln info` and warned about once at render time.

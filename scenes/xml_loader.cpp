@@ -249,9 +249,7 @@ class XmlLoader {
       if (d < 0) fail(n, "MaxRecursionDepth must not be negative, got " + std::to_string(d));
       scene_.max_recursion_depth = d;
     }
-    if (Node n = opt_child(root_, "BackfaceCulling")) {
-      if (get_bool(n)) warn(n, "BackfaceCulling is not supported; all faces are rendered");
-    }
+    if (Node n = opt_child(root_, "BackfaceCulling")) scene_.backface_culling = get_bool(n);
     if (Node n = opt_child(root_, "BackgroundTexture")) {
       get_string(n);
       has_background_texture_ = true;
@@ -537,7 +535,10 @@ class XmlLoader {
     if (Node g = opt_child(c, "GammaCorrection")) {  // 2018
       const std::string v = get_string(g);
       if (!cam.tonemap) {
-        warn(g, "GammaCorrection without a Tonemap is ignored");
+        if (is_srgb(v))
+          cam.srgb_without_tonemap = true;
+        else
+          warn(g, "GammaCorrection " + v + " without a Tonemap is ignored (only sRGB applies to the LDR preview)");
       } else if (is_srgb(v)) {
         cam.tonemap->srgb = true;
       } else {
@@ -658,6 +659,7 @@ class XmlLoader {
       Node name = opt_child(l, "EnvMapName"), image = opt_child(l, "ImageId");
       if (!name && !image) fail(l, "missing <EnvMapName> (or <ImageId>)");
       EnvLightDesc e;
+      Node named = name ? name : image;
       if (name) {
         e.image_path = resolve(get_string(name));
       } else {
@@ -666,6 +668,10 @@ class XmlLoader {
         if (it == image_paths_.end()) fail(image, "Image " + std::to_string(id) + " is not defined");
         e.image_path = it->second;
       }
+      // Checked here, where the element is known; the renderer reads (and names) it when it builds the light.
+      std::error_code ec;
+      if (!fs::is_regular_file(e.image_path, ec)) fail(named, "environment map '" + e.image_path + "' does not exist");
+      e.element = location(l);
       scene_.env_lights.push_back(e);
     }
   }
@@ -749,11 +755,10 @@ class XmlLoader {
     if (it == material_index_.end()) fail(n, "Material " + std::to_string(id) + " is not defined");
     return it->second;
   }
-  void read_motion_blur(Node obj) {
-    if (Node m = opt_child(obj, "MotionBlur")) {
-      get_vec3(m);
-      ++objects_with_motion_blur_;
-    }
+  // The object's translation over the shutter interval, in world space (format doc: translated by t * (x y z)).
+  Vec3f read_motion_blur(Node obj) const {
+    Node m = opt_child(obj, "MotionBlur");
+    return m ? get_vec3(m) : Vec3f(0.0f);
   }
   std::optional<bool> shading_mode(Node obj) const {
     const auto s = attr(obj, "shadingMode");
@@ -780,7 +785,7 @@ class XmlLoader {
       fail(c, "subdivide must be 0.." + std::to_string(kMaxSubdivisionLevels) + ", got " + std::to_string(m.subdivide));
     if (light) m.emission = get_rgb(req_child(c, "Radiance"));
     read_faces(req_child(c, "Faces"), m);
-    read_motion_blur(c);
+    m.motion = read_motion_blur(c);
     read_texture_refs(c);
     if (!light) mesh_index_.emplace(id, int(scene_.meshes.size()));  // the first of repeated ids
     scene_.meshes.push_back(std::move(m));
@@ -796,7 +801,7 @@ class XmlLoader {
     const auto idx = parse_ints(text_of(ind), source(ind));
     if (idx.size() != 3) fail(ind, "expected 3 vertex indices, got " + std::to_string(idx.size()));
     build_indexed(ind, idx, 0, 0, false, m);
-    read_motion_blur(c);
+    m.motion = read_motion_blur(c);
     read_texture_refs(c);
     scene_.meshes.push_back(std::move(m));
   }
@@ -816,7 +821,7 @@ class XmlLoader {
     Node radius = req_child(c, "Radius");
     s.radius = positive(radius, get_float(radius), "Radius");
     if (light) s.emission = get_rgb(req_child(c, "Radiance"));
-    read_motion_blur(c);
+    s.motion = read_motion_blur(c);
     read_texture_refs(c);
     scene_.spheres.push_back(s);
   }
@@ -840,7 +845,7 @@ class XmlLoader {
     inst.material = material_ref(c, false);
     if (inst.material < 0) inst.material = base.material;
     inst.smooth = shading_mode(c);
-    read_motion_blur(c);
+    inst.motion = read_motion_blur(c);
     read_texture_refs(c);
     scene_.instances.push_back(inst);
   }
@@ -951,13 +956,7 @@ class XmlLoader {
     if (!texture_ids_.empty() || objects_with_textures_ > 0)
       scene_.unsupported.push_back("textures (Textures: " + std::to_string(texture_ids_.size()) + " defined, " +
                                    std::to_string(objects_with_textures_) + " objects use them)");
-    if (objects_with_motion_blur_ > 0)
-      scene_.unsupported.push_back("motion blur (MotionBlur on " + std::to_string(objects_with_motion_blur_) +
-                                   " objects)");
     if (has_background_texture_) scene_.unsupported.push_back("background texture (BackgroundTexture)");
-    if (!scene_.env_lights.empty())
-      scene_.unsupported.push_back(
-          "environment light (SphericalDirectionalLight: " + std::to_string(scene_.env_lights.size()) + ")");
   }
 
   std::string file_;
@@ -978,7 +977,6 @@ class XmlLoader {
   std::unordered_set<int> texture_ids_;
   std::unordered_map<int, std::string> image_paths_;
   int objects_with_textures_ = 0;
-  int objects_with_motion_blur_ = 0;
   bool has_background_texture_ = false;
 };
 

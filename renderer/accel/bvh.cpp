@@ -25,7 +25,9 @@ struct PrimRef {
 };
 constexpr uint32_t kKindShift = 30;
 constexpr uint32_t kIndexMask = (1u << kKindShift) - 1;
-constexpr uint32_t kKindTriangle = 0, kKindSphere = 1, kKindInstance = 2;
+// A moving world mesh is one primitive of the world tree (its swept box) with its own tree at time 0, like an
+// instance's prototype; moving spheres and instances keep their kinds and move the ray back by their offset.
+constexpr uint32_t kKindTriangle = 0, kKindSphere = 1, kKindInstance = 2, kKindMovingMesh = 3;
 inline uint32_t ref_kind(PrimRef r) { return r.prim >> kKindShift; }
 inline uint32_t ref_index(PrimRef r) { return r.prim & kIndexMask; }
 
@@ -75,8 +77,9 @@ struct TravRay {
   Vec3f o, d, inv_d;
   WatertightRay wr;
   float tmin;
+  float time;
   int near[3], far[3];  // rows of Node4::b holding the entry / exit plane on each axis
-  explicit TravRay(const Ray& r) : o(r.o), d(r.d), wr(make_watertight_ray(r)), tmin(r.tmin) {
+  explicit TravRay(const Ray& r) : o(r.o), d(r.d), wr(make_watertight_ray(r)), tmin(r.tmin), time(r.time) {
     for (int a = 0; a < 3; ++a) {
       const float c = std::abs(d[a]) >= kMinDirComponent ? d[a] : std::copysign(kMinDirComponent, d[a]);
       inv_d[a] = 1.0f / c;
@@ -184,6 +187,7 @@ struct Bvh::Impl {
   BvhOptions options;
   Tree world;
   std::vector<Tree> prototypes;  // empty trees for prototypes no instance uses
+  std::vector<Tree> moving_meshes;  // per world mesh: its own tree when the mesh moves, else empty
   std::vector<Transform> instance_to_object;
   std::vector<Transform> sphere_to_object;
   std::vector<uint8_t> sphere_transformed;
@@ -244,18 +248,23 @@ struct Bvh::Impl {
       sphere_to_object.push_back(s.to_world.inverse());
       sphere_transformed.push_back(!s.to_world.is_identity());
     }
+    moving_meshes.resize(g.meshes.size());
+    for (const Shape& s : g.shapes)
+      if (s.kind == ShapeKind::Mesh && s.moving()) moving_meshes[s.index] = build_mesh_tree(g.meshes[s.index]);
 
-    // World primitives: triangles of world meshes (in shape order), then spheres, then instances.
+    // World primitives: triangles of static world meshes (in shape order), then spheres, then instances, then
+    // moving meshes.
     std::vector<size_t> first_tri(g.shapes.size() + 1, 0);
     for (size_t i = 0; i < g.shapes.size(); ++i) {
       const Shape& s = g.shapes[i];
-      first_tri[i + 1] = first_tri[i] + (s.kind == ShapeKind::Mesh ? g.meshes[s.index].triangle_count() : 0);
+      const bool flat = s.kind == ShapeKind::Mesh && !s.moving();
+      first_tri[i + 1] = first_tri[i] + (flat ? g.meshes[s.index].triangle_count() : 0);
     }
     std::vector<Bounds3f> bounds(first_tri.back());
     std::vector<PrimRef> refs(first_tri.back());
     for (uint32_t i = 0; i < g.shapes.size(); ++i) {
       const Shape& s = g.shapes[i];
-      if (s.kind != ShapeKind::Mesh) continue;
+      if (s.kind != ShapeKind::Mesh || s.moving()) continue;
       const TriangleMesh& m = g.meshes[s.index];
       tbb::parallel_for(size_t(0), m.triangle_count(), [&, i](size_t t) {
         Bounds3f b(m.vertex(t, 0));
@@ -268,15 +277,22 @@ struct Bvh::Impl {
     for (uint32_t i = 0; i < g.shapes.size(); ++i) {
       const Shape& s = g.shapes[i];
       if (s.kind == ShapeKind::Sphere) {
-        bounds.push_back(sphere_world_bounds(g.spheres[s.index]));
+        bounds.push_back(shape_world_bounds(g, s));
         refs.push_back({i, (kKindSphere << kKindShift) | s.index});
       }
     }
     for (uint32_t i = 0; i < g.shapes.size(); ++i) {
       const Shape& s = g.shapes[i];
       if (s.kind == ShapeKind::Instance && !prototypes[g.instances[s.index].prototype].empty()) {
-        bounds.push_back(instance_world_bounds(g, g.instances[s.index]));
+        bounds.push_back(shape_world_bounds(g, s));
         refs.push_back({i, (kKindInstance << kKindShift) | s.index});
+      }
+    }
+    for (uint32_t i = 0; i < g.shapes.size(); ++i) {
+      const Shape& s = g.shapes[i];
+      if (s.kind == ShapeKind::Mesh && s.moving() && !moving_meshes[s.index].empty()) {
+        bounds.push_back(shape_world_bounds(g, s));
+        refs.push_back({i, (kKindMovingMesh << kKindShift) | s.index});
       }
     }
     if (options.debug_drop_primitive && *options.debug_drop_primitive < refs.size()) {
@@ -290,6 +306,7 @@ struct Bvh::Impl {
     stats.world = world.binary_stats;
     stats.wide_nodes = world.nodes.size();
     stats.bytes = world.bytes() + (instance_to_object.capacity() + sphere_to_object.capacity()) * sizeof(Transform);
+    for (const Tree& t : moving_meshes) stats.bytes += t.bytes();
     for (const Tree& t : prototypes) {
       if (t.empty()) continue;
       ++stats.prototype_trees;
@@ -399,13 +416,20 @@ struct Bvh::Impl {
     return found;
   }
 
-  // A sphere or an instance (whose prototype tree is traversed with the ray in object space).
+  // A sphere, an instance (whose prototype tree is traversed with the ray in object space) or a moving mesh (its
+  // tree traversed with the ray moved back by the mesh's offset at the ray's time).
   template <bool kAny>
   bool other_prim(const PrimRef ref, const TravRay& r, float& tmax, Closest& best) const {
+    const Shape& shape = g.shapes[ref.shape];
+    const Vec3f origin = shape.moving() ? r.o - shape.offset_at(r.time) : r.o;
+    if (ref_kind(ref) == kKindMovingMesh) {
+      const TravRay back(Ray{origin, r.d, r.tmin, tmax, r.time});
+      return traverse<kAny>(moving_meshes[ref_index(ref)], back, tmax, best, ref.shape);
+    }
     if (ref_kind(ref) == kKindSphere) {
       const uint32_t si = ref_index(ref);
       const SphereShape& s = g.spheres[si];
-      Vec3f o = r.o, d = r.d;
+      Vec3f o = origin, d = r.d;
       if (sphere_transformed[si]) to_object_space(sphere_to_object[si], o, d);
       const auto t = intersect_sphere(o, d, s.center, s.radius, r.tmin, tmax);
       if (!t) return false;
@@ -414,9 +438,9 @@ struct Bvh::Impl {
       return true;
     }
     const uint32_t ii = ref_index(ref);
-    Vec3f o = r.o, d = r.d;
+    Vec3f o = origin, d = r.d;
     to_object_space(instance_to_object[ii], o, d);
-    const TravRay obj(Ray{o, d, r.tmin, tmax});
+    const TravRay obj(Ray{o, d, r.tmin, tmax, r.time});
     return traverse<kAny>(prototypes[g.instances[ii].prototype], obj, tmax, best, ref.shape);
   }
 };
@@ -439,7 +463,9 @@ bool Bvh::intersect(const Ray& ray, Hit& hit) const {
   if (s.kind == ShapeKind::Sphere) {
     hit.prim = 0;
     hit.u = hit.v = 0.0f;
-    hit.ng = sphere_world_normal(g.spheres[s.index], ray, best.t);
+    Ray back = ray;  // a moving sphere is hit where it is at the ray's time
+    if (s.moving()) back.o -= s.offset_at(ray.time);
+    hit.ng = sphere_world_normal(g.spheres[s.index], back, best.t);
   } else {
     hit.prim = best.prim;
     hit.u = best.b1;

@@ -194,7 +194,7 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
     const Vec3f p = surface_point(geometry, cam, ea).p;
 
     const Frame frame(face_forward(ng, -cam.d));
-    const Ray bounce = spawn_ray(p, ng, frame.to_world(sample_cosine_hemisphere(rng.next_2d())));
+    const Ray bounce = spawn_ray(p, ng, frame.to_world(sample_cosine_hemisphere(rng.next_2d())), cam.time);
     Hit eb, bb;
     const bool he2 = embree.intersect(bounce, eb), hb2 = bvh.intersect(bounce, bb);
     out.bounce = compare(geometry, bounce, he2, eb, hb2, bb);
@@ -203,7 +203,7 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
 
     const Vec3f u(rng.next_float(), rng.next_float(), rng.next_float());
     const Vec3f target = scene.lo + scene.diagonal() * u;
-    const Ray shadow = spawn_ray_to(p, ng, target);
+    const Ray shadow = spawn_ray_to(p, ng, target, cam.time);
     const bool oe = embree.occluded(shadow), ob = bvh.occluded(shadow);
     out.shadow = compare_occlusion(geometry, shadow, embree, bvh, oe, ob);
     if (oe != ob && notes[i].empty()) {

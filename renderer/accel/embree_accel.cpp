@@ -19,15 +19,21 @@ namespace kiln {
 namespace {
 
 // What a sphere's user-geometry callbacks need; the transform is skipped for plain spheres.
+// A moving sphere (motion non-zero) has two time steps; the callbacks move the ray back by the sphere's offset at
+// the ray's time instead of moving the sphere.
 struct SphereData {
   const SphereShape* shape = nullptr;
   bool has_transform = false;
   Transform to_object;
+  Vec3f motion{0.0f};
 };
 
 void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
   const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
-  const Bounds3f b = sphere_world_bounds(*s->shape);
+  Bounds3f b = sphere_world_bounds(*s->shape);
+  const Vec3f offset = s->motion * float(args->timeStep);  // time steps 0 and 1 are the shutter's ends
+  b.lo += offset;
+  b.hi += offset;
   *args->bounds_o = RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
 }
 
@@ -41,7 +47,9 @@ void sphere_intersect_cb(const RTCIntersectFunctionNArguments* args) {
   RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    const Vec3f wo(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i));
+    const Vec3f wo = Vec3f(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
+                           RTCRayN_org_z(ray, args->N, i)) -
+                     s->motion * RTCRayN_time(ray, args->N, i);
     const Vec3f wd(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
     Vec3f o = wo, d = wd;
     sphere_object_ray(*s, o, d);
@@ -66,7 +74,8 @@ void sphere_occluded_cb(const RTCOccludedFunctionNArguments* args) {
   RTCRayN* ray = args->ray;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    Vec3f o(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i));
+    Vec3f o = Vec3f(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i)) -
+              s->motion * RTCRayN_time(ray, args->N, i);
     Vec3f d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
     sphere_object_ray(*s, o, d);
     if (intersect_sphere(o, d, s->shape->center, s->shape->radius, RTCRayN_tnear(ray, args->N, i),
@@ -114,9 +123,19 @@ struct EmbreeAccel::Impl {
                   " failed: " + (last_error.empty() ? "error code " + std::to_string(int(e)) : last_error));
   }
 
-  RTCGeometry triangle_geometry(const TriangleMesh& m) {
+  // motion non-zero: two time steps, the second vertex buffer holding the vertices moved by it (Embree
+  // interpolates linearly between them, which is the translation at every instant).
+  RTCGeometry triangle_geometry(const TriangleMesh& m, Vec3f motion = Vec3f(0.0f)) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     const size_t nv = m.p.size(), nt = m.triangle_count();
+    const bool moving = motion.x != 0.0f || motion.y != 0.0f || motion.z != 0.0f;
+    if (moving) {
+      rtcSetGeometryTimeStepCount(geom, 2);
+      auto* end = static_cast<Vec3f*>(
+          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 1, RTC_FORMAT_FLOAT3, sizeof(Vec3f), nv));
+      if (end)
+        for (size_t i = 0; i < nv; ++i) end[i] = m.p[i] + motion;
+    }
     if (shareable(m.p)) {
       rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.p.data(), 0, sizeof(Vec3f), nv);
     } else {
@@ -166,11 +185,12 @@ struct EmbreeAccel::Impl {
       RTCGeometry geom = nullptr;
       if (s.kind == ShapeKind::Mesh) {
         if (geometry.meshes[s.index].triangle_count() == 0) continue;
-        geom = triangle_geometry(geometry.meshes[s.index]);
+        geom = triangle_geometry(geometry.meshes[s.index], s.motion);
       } else if (s.kind == ShapeKind::Sphere) {
         const SphereShape& sph = geometry.spheres[s.index];
-        sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse()});
+        sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse(), s.motion});
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        if (s.moving()) rtcSetGeometryTimeStepCount(geom, 2);
         rtcSetGeometryUserPrimitiveCount(geom, 1);
         rtcSetGeometryUserData(geom, &sphere_data.back());
         rtcSetGeometryBoundsFunction(geom, sphere_bounds_cb, nullptr);
@@ -195,7 +215,14 @@ struct EmbreeAccel::Impl {
         const auto& m = inst.to_world.matrix().m;
         for (int r = 0; r < 3; ++r)
           for (int c = 0; c < 4; ++c) xfm[4 * r + c] = m[r][c];
-        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+        if (s.moving()) {  // the transforms at the shutter's ends, interpolated by Embree
+          rtcSetGeometryTimeStepCount(geom, 2);
+          rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+          for (int r = 0; r < 3; ++r) xfm[4 * r + 3] += s.motion[r];
+          rtcSetGeometryTransform(geom, 1, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+        } else {
+          rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+        }
         rtcCommitGeometry(geom);
       }
       rtcAttachGeometryByID(scene, geom, id);
@@ -221,7 +248,7 @@ RTCRay to_rtc(const Ray& r) {
   x.dir_x = r.d.x;
   x.dir_y = r.d.y;
   x.dir_z = r.d.z;
-  x.time = 0.0f;
+  x.time = r.time;
   x.tfar = r.tmax;
   x.mask = 0xffffffffu;
   x.id = 0;

@@ -11,6 +11,7 @@ struct D3 {
   double x, y, z;
 };
 D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 D3 to_d(Vec3f v) { return {v.x, v.y, v.z}; }
@@ -51,10 +52,11 @@ ExactHit exact_triangle(const Ray& ray, D3 v0, D3 v1, D3 v2) {
   return r;
 }
 
-ExactHit exact_sphere(const Ray& ray, const SphereShape& s) {
+// offset: where the (moving) sphere is at the ray's time relative to time 0.
+ExactHit exact_sphere(const Ray& ray, const SphereShape& s, D3 offset) {
   ExactHit r;
   const Mat4& inv = s.to_world.inverse_matrix();
-  const D3 o = apply(inv, to_d(ray.o), 1.0), d = apply(inv, to_d(ray.d), 0.0);
+  const D3 o = apply(inv, to_d(ray.o) - offset, 1.0), d = apply(inv, to_d(ray.d), 0.0);
   const D3 f = o - to_d(s.center);
   const double a = dot(d, d), b = -dot(f, d), rr = double(s.radius) * s.radius;
   const D3 l = {f.x + d.x * (b / a), f.y + d.y * (b / a), f.z + d.z * (b / a)};
@@ -76,16 +78,20 @@ ExactHit exact_sphere(const Ray& ray, const SphereShape& s) {
 
 ExactHit exact_hit(const WorldGeometry& g, const Ray& ray, uint32_t shape, uint32_t prim) {
   const Shape& s = g.shapes[shape];
-  if (s.kind == ShapeKind::Sphere) return exact_sphere(ray, g.spheres[s.index]);
+  // A moving shape at the ray's time, in double: time * motion added to its time-0 position.
+  const D3 offset = {double(ray.time) * s.motion.x, double(ray.time) * s.motion.y, double(ray.time) * s.motion.z};
+  if (s.kind == ShapeKind::Sphere) return exact_sphere(ray, g.spheres[s.index], offset);
   if (s.kind == ShapeKind::Mesh) {
     const TriangleMesh& m = g.meshes[s.index];
-    return exact_triangle(ray, to_d(m.vertex(prim, 0)), to_d(m.vertex(prim, 1)), to_d(m.vertex(prim, 2)));
+    return exact_triangle(ray, to_d(m.vertex(prim, 0)) + offset, to_d(m.vertex(prim, 1)) + offset,
+                          to_d(m.vertex(prim, 2)) + offset);
   }
   const MeshInstance& inst = g.instances[s.index];
   const TriangleMesh& m = g.prototypes[inst.prototype];
   const Mat4& xf = inst.to_world.matrix();
-  return exact_triangle(ray, apply(xf, to_d(m.vertex(prim, 0)), 1.0), apply(xf, to_d(m.vertex(prim, 1)), 1.0),
-                        apply(xf, to_d(m.vertex(prim, 2)), 1.0));
+  return exact_triangle(ray, apply(xf, to_d(m.vertex(prim, 0)), 1.0) + offset,
+                        apply(xf, to_d(m.vertex(prim, 1)), 1.0) + offset,
+                        apply(xf, to_d(m.vertex(prim, 2)), 1.0) + offset);
 }
 
 }  // namespace kiln

@@ -25,9 +25,14 @@ struct SphereShape {
 
 enum class ShapeKind : uint8_t { Mesh, Sphere, Instance };
 
+// Motion blur: a shape with a non-zero motion is translated by time * motion at a ray's time (Ray::time in [0, 1));
+// its mesh, sphere or instance data describe it at time 0. Accelerators build time-varying geometry for it only.
 struct Shape {
   ShapeKind kind = ShapeKind::Mesh;
   uint32_t index = 0;  // into meshes (Mesh), spheres (Sphere) or instances (Instance)
+  Vec3f motion{0.0f, 0.0f, 0.0f};
+  bool moving() const { return motion.x != 0.0f || motion.y != 0.0f || motion.z != 0.0f; }
+  Vec3f offset_at(float time) const { return motion * time; }
 };
 
 struct MeshInstance {
@@ -41,7 +46,8 @@ struct WorldGeometry {
   std::vector<SphereShape> spheres;
   std::vector<TriangleMesh> prototypes;  // object space, used by instances
   std::vector<MeshInstance> instances;
-  Bounds3f bounds() const;
+  bool has_motion = false;  // some shape moves: rays carry a time
+  Bounds3f bounds() const;  // over the whole shutter interval
   size_t triangle_count() const;  // counting instanced triangles once per instance
 };
 

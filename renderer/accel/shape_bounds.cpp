@@ -24,7 +24,7 @@ Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst)
   return inst.to_world.bounds(mesh_bounds(g.prototypes[inst.prototype]));
 }
 
-Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s) {
+Bounds3f shape_static_bounds(const WorldGeometry& g, const Shape& s) {
   switch (s.kind) {
     case ShapeKind::Mesh:
       return mesh_bounds(g.meshes[s.index]);
@@ -34,6 +34,19 @@ Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s) {
       return instance_world_bounds(g, g.instances[s.index]);
   }
   return {};
+}
+
+Bounds3f swept_bounds(const Bounds3f& at_time0, Vec3f motion) {
+  if (at_time0.empty()) return at_time0;
+  Bounds3f b = at_time0;
+  b.extend(at_time0.lo + motion);
+  b.extend(at_time0.hi + motion);
+  return b;
+}
+
+Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s) {
+  const Bounds3f b = shape_static_bounds(g, s);
+  return s.moving() ? swept_bounds(b, s.motion) : b;
 }
 
 Bounds3f geometry_bounds(const WorldGeometry& g) {

@@ -27,12 +27,9 @@ SurfacePoint on_sphere(const SphereShape& s, const Ray& ray, float t) {
   return xf ? SurfacePoint{s.to_world.point(p), unit_or_z(s.to_world.normal(dir))} : SurfacePoint{p, dir};
 }
 
-}  // namespace
-
-template <bool kMeshesOnly>
-SurfacePoint surface_point(const WorldGeometry& g, const Ray& ray, const Hit& hit) {
-  const Shape& s = g.shapes[hit.shape];
-  const ShapeKind kind = kMeshesOnly ? ShapeKind::Mesh : s.kind;
+// The shape as it is at time 0, hit by `ray`.
+SurfacePoint static_surface_point(const WorldGeometry& g, const Shape& s, ShapeKind kind, const Ray& ray,
+                                  const Hit& hit) {
   switch (kind) {
     case ShapeKind::Mesh: {
       const TriangleMesh& m = g.meshes[s.index];
@@ -47,6 +44,23 @@ SurfacePoint surface_point(const WorldGeometry& g, const Ray& ray, const Hit& hi
     case ShapeKind::Sphere: return on_sphere(g.spheres[s.index], ray, hit.t);
   }
   return {};
+}
+
+}  // namespace
+
+template <bool kMeshesOnly>
+SurfacePoint surface_point(const WorldGeometry& g, const Ray& ray, const Hit& hit) {
+  const Shape& s = g.shapes[hit.shape];
+  const ShapeKind kind = kMeshesOnly ? ShapeKind::Mesh : s.kind;
+  if (kMeshesOnly || !s.moving()) return static_surface_point(g, s, kind, ray, hit);
+  // A moving shape, where the ray found it: the ray shifted back by the shape's offset at its time meets the shape
+  // at time 0 at the same t; the point found there moves forward by that offset (a translation keeps normals).
+  const Vec3f offset = s.offset_at(ray.time);
+  Ray back = ray;
+  back.o -= offset;
+  SurfacePoint sp = static_surface_point(g, s, kind, back, hit);
+  sp.p += offset;
+  return sp;
 }
 
 template SurfacePoint surface_point<false>(const WorldGeometry&, const Ray&, const Hit&);

@@ -12,7 +12,8 @@ struct SurfacePoint {
   Vec3f ng;  // unit geometric normal: (v1-v0)x(v2-v0) of the world triangle, outward for spheres
 };
 
-// kMeshesOnly: every shape is a world-space mesh (no spheres, no instances), so the shape dispatch is compiled out.
+// kMeshesOnly: every shape is a static world-space mesh (no spheres, no instances, no motion), so the shape dispatch
+// is compiled out. A moving shape is resolved at the ray's time.
 template <bool kMeshesOnly = false>
 SurfacePoint surface_point(const WorldGeometry& g, const Ray& ray, const Hit& hit);
 

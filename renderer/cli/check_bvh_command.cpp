@@ -18,7 +18,9 @@ int cmd_check_bvh(const std::string& scene_path, size_t rays, uint64_t seed) {
   const Camera camera(scene.cameras[0]);
   const auto camera_ray = [&](size_t, Rng& rng) {
     const Vec2f p = rng.next_2d();
-    return camera.generate_ray(p.x * float(camera.width()), p.y * float(camera.height()), rng.next_2d());
+    Ray r = camera.generate_ray(p.x * float(camera.width()), p.y * float(camera.height()), rng.next_2d());
+    if (world->geometry.has_motion) r.time = rng.next_float();  // every instant of the shutter, moving shapes too
+    return r;
   };
   CheckBvhOptions o;
   o.rays = rays;

@@ -43,6 +43,7 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
   WorldOptions wo;
   wo.build_accelerator = false;
   wo.ellipsoid_pdf = ellipsoid_pdf(rules, overrides);
+  wo.env_map_sampling = env_map_sampling(rules, overrides);
   const auto world = build_world(s, wo);
   std::printf("scene: %s (%s)\n", path.c_str(), s.format.c_str());
   std::printf("rules: %s\n", rules_name(rules));
@@ -76,9 +77,11 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
       s.ambient_light.is_black() ? "off" : "on", ws.point_lights, ws.spot_lights, ws.directional_lights, ws.area_lights,
       ws.mesh_lights, ws.sphere_lights, s.env_lights.size(), s.infinite_lights.size());
   std::printf("features: %s\n", describe_features(world->features).c_str());
-  std::printf("needs: spheres %s, instances %s, textures %s, cone sampler %s\n",
+  std::printf("needs: spheres %s, instances %s, textures %s, cone sampler %s, time sample %s\n",
               (world->features & kFeatureSpheres) ? "yes" : "no", (world->features & kFeatureInstances) ? "yes" : "no",
-              (world->features & kFeatureTextures) ? "yes" : "no", ws.cone_sampler_built ? "yes" : "no");
+              (world->features & kFeatureTextures) ? "yes" : "no", ws.cone_sampler_built ? "yes" : "no",
+              ws.moving_shapes > 0 ? ("yes (" + std::to_string(ws.moving_shapes) + " moving shapes)").c_str() : "no");
+  for (const std::string& w : world->warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& u : s.unsupported) std::printf("not rendered yet: %s\n", u.c_str());
   return 0;

@@ -161,6 +161,7 @@ ProfileReport run_profile(const ProfileArgs& args) {
   WorldOptions wo;
   wo.accel = args.accel;
   wo.ellipsoid_pdf = ellipsoid_pdf(rules, overrides);
+  wo.env_map_sampling = env_map_sampling(rules, overrides);
   r.scene_desc_bytes = scene_desc_bytes(scene);  // measured before the world takes the arrays over
   const auto world = build_world_taking_meshes(scene, wo);
   const double build_seconds = seconds_since(t);

@@ -52,11 +52,16 @@ nlohmann::json world_stats_json(const World& w) {
             {"directional", s.directional_lights},
             {"area", s.area_lights},
             {"mesh", s.mesh_lights},
-            {"sphere", s.sphere_lights}}},
+            {"sphere", s.sphere_lights},
+            {"infinite", s.infinite_lights},
+            {"environment_map", s.environment_maps}}},
           {"built",
            {{"sphere_geometry", s.sphere_geometry_built},
             {"cone_sampler", s.cone_sampler_built},
             {"light_selector", s.light_selector_built},
+            // Motion blur: time-varying geometry and a shutter-time sample per camera sample, only when shapes move.
+            {"moving_shapes", s.moving_shapes},
+            {"time_sample", s.moving_shapes > 0},
             {"accelerator", w.accel->stats().name}}},
           {"features", describe_features(w.features)},
           {"accel_build_seconds", w.accel->stats().build_seconds},
@@ -175,6 +180,7 @@ int cmd_render(const RenderArgs& args) {
   WorldOptions wo;
   wo.accel = args.accel;
   wo.ellipsoid_pdf = ellipsoid_pdf(rules, args.rules);
+  wo.env_map_sampling = env_map_sampling(rules, args.rules);
   const uint32_t aov_flags = args.aovs ? parse_aovs(*args.aovs) : 0u;
   const auto world = build_world_taking_meshes(scene, wo);
   if (!args.quiet) {

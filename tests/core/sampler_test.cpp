@@ -23,6 +23,24 @@ std::vector<Vec2f> pixel_points(uint64_t seed, uint32_t px, uint32_t py, uint32_
   return pts;
 }
 
+// A dedicated stream (the shutter time) is stratified over a pixel's samples and reading it changes no other value:
+// a scene that never asks for it renders exactly as before, one that does keeps every other dimension.
+TEST(Sampler, DedicatedStreamIsStratifiedAndLeavesTheDimensionsAlone) {
+  constexpr uint32_t kStream = 0x74696d65u, kN = 64;
+  std::vector<int> strata(kN, 0);
+  for (uint32_t i = 0; i < kN; ++i) {
+    Sampler plain(9, 3, 4, i), timed(9, 3, 4, i);
+    const float t = timed.dedicated_1d(kStream);
+    ASSERT_GE(t, 0.0f);
+    ASSERT_LT(t, 1.0f);
+    ++strata[size_t(t * kN)];
+    for (int d = 0; d < 80; ++d) ASSERT_EQ(plain.next_float(), timed.next_float()) << "dimension " << d;
+    ASSERT_EQ(timed.dedicated_1d(kStream), t) << "a pure function of (seed, pixel, sample, stream)";
+  }
+  for (uint32_t k = 0; k < kN; ++k) EXPECT_EQ(strata[k], 1) << "stratum " << k;
+  EXPECT_NE(Sampler(9, 3, 4, 0).dedicated_1d(kStream), Sampler(9, 3, 5, 0).dedicated_1d(kStream));
+}
+
 TEST(Sampler, SobolDimensionsAreTheZeroTwoSequence) {
   // First points of Sobol' dimensions 0 and 1 in index (not Gray-code) order: van der Corput and its (0,2) partner.
   const float x[] = {0.0f, 0.5f, 0.25f, 0.75f, 0.125f};

@@ -106,6 +106,8 @@ inline void write_fixtures(const std::filesystem::path& dir) {
   write_bytes(dir / "vertices.bin", little_endian_block<float>(3, {0, 0, 0, 1, 0, 0, 0, 1, 0}));
   write_bytes(dir / "texcoords.bin", little_endian_block<float>(3, {0, 0, 1, 0, 0, 1}));
   write_bytes(dir / "faces.bin", little_endian_block<int32_t>(1, {1, 2, 3}));
+  // Environment maps must exist when a scene names one (the loader checks; the renderer reads it).
+  write_bytes(dir / "env.hdr", "#?RADIANCE\n");
   const std::string ply_text =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
       "property float nx\nproperty float ny\nproperty float nz\nelement face 1\n"

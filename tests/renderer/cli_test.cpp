@@ -159,6 +159,8 @@ TEST(Cli, RenderWritesExrPngAndStats) {
   EXPECT_EQ(j["world"]["spheres"], 1);
   EXPECT_EQ(j["world"]["built"]["sphere_geometry"], true);
   EXPECT_EQ(j["world"]["built"]["cone_sampler"], false);
+  EXPECT_EQ(j["world"]["built"]["time_sample"], false);  // nothing moves: no shutter time is sampled
+  EXPECT_EQ(j["world"]["built"]["moving_shapes"], 0);
   EXPECT_EQ(j["cameras"][0]["rays"]["primary"], 64);
   // Nothing temporary left next to the outputs.
   for (const auto& e : fs::directory_iterator(dir + "/out"))

@@ -42,6 +42,25 @@ Ray camera_ray(size_t, Rng& rng) {
   return Ray{eye, f.to_world(local)};
 }
 
+// The same scene with motion blur: a moving closed mesh, a moving soup, a moving ellipsoid and moving instances,
+// shot at random instants of the shutter (bounce and shadow rays keep their camera ray's time).
+TEST(CheckBvh, AgreesOnMovingGeometryAtEveryInstant) {
+  WorldGeometry g = check_scene();
+  const Vec3f motions[] = {{0.7f, 0, 0.2f}, {0, 0.5f, -1.2f}, {-1.5f, 0.3f, 0}, {0.4f, 0, 0.9f}};
+  int k = 0;
+  for (size_t i = 1; i < g.shapes.size(); i += 2) g.shapes[i].motion = motions[k++ % 4];
+  g.has_motion = true;
+  const auto timed_ray = [](size_t i, Rng& rng) {
+    Ray r = camera_ray(i, rng);
+    r.time = rng.next_float();
+    return r;
+  };
+  const CheckBvhReport r = check_bvh(g, timed_ray, CheckBvhOptions{});
+  EXPECT_TRUE(r.passed) << r.to_json();
+  EXPECT_EQ(r.total_disagreements(), 0u) << r.first_disagreement;
+  EXPECT_GT(r.bounce.rays, 50000u);
+}
+
 TEST(CheckBvh, PassesOnAGeneratedScene) {
   const WorldGeometry g = check_scene();
   const CheckBvhReport r = check_bvh(g, camera_ray, CheckBvhOptions{});
