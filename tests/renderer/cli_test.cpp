@@ -10,6 +10,7 @@
 
 #include "render_util.h"
 #include "renderer/image_io.h"
+#include "support/shared_data.h"
 
 namespace kiln::test {
 namespace {
@@ -196,7 +197,7 @@ TEST(Cli, PbrtSceneRendersAndEveryCommandReadsIt) {
 }
 
 TEST(Cli, InfoSucceedsOnEveryCourseScene) {
-  if (!have_shared()) GTEST_SKIP() << "KILN_SHARED_DIR (" << shared_dir() << ") has no scenes/ceng795";
+  KILN_NEED_SHARED_PATH(shared_dir() + "/scenes/ceng795");
   size_t n = 0;
   for (const auto& e : fs::recursive_directory_iterator(shared_dir() + "/scenes/ceng795")) {
     if (e.path().extension() != ".xml") continue;
@@ -216,7 +217,7 @@ namespace {
 // Issue 6: the in-house BVH agrees with Embree on the course scenes and the killeroo (kiln check-bvh exits 0).
 TEST(Cli, CheckBvhPassesOnCourseScenesAndKilleroo) {
   std::vector<std::string> scenes = {std::string(KILN_SOURCE_DIR) + "/scenes/killeroo_path.xml"};
-  if (have_shared()) {
+  if (have_shared() || KILN_SHARED_REQUIRED) {  // required: a missing folder fails in directory_iterator
     for (const char* dir : {"pathTracing", "directLighting", "regression/hw1_2021"})
       for (const auto& e : fs::directory_iterator(shared_dir() + "/scenes/ceng795/" + dir))
         if (e.path().extension() == ".xml") scenes.push_back(e.path().string());
