@@ -142,9 +142,13 @@ TEST_F(CliBadInput, PbrtWrongParameterType) {
                    "line 2 (Camera \"perspective\"): parameter \"fov\" is declared \"string\"");
 }
 
+// On a scene that loads and renders, so only the option itself can cause the failure.
 TEST_F(CliBadInput, BadOption) {
-  const RunResult r = run_kiln("render " + dir_ + "/x.xml --spp -3");
+  const std::string scene = std::string(KILN_SOURCE_DIR) + "/scenes/default.xml";
+  const RunResult r = run_kiln("render " + scene + " --spp -3 -o " + out_ + " -q");
   EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--spp"), std::string::npos) << "message must name the option: " << r.output;
+  EXPECT_TRUE(!fs::exists(out_) || fs::is_empty(out_)) << "no output file may be left behind";
 }
 
 TEST(Cli, RenderWritesExrPngAndStats) {
