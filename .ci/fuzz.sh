@@ -5,6 +5,7 @@
 # leak, timeout, out-of-memory or sanitizer report; the offending input is left in build/fuzz/artifacts/<loader>/.
 #
 #   FUZZ_SECONDS=60     run time per harness
+#   FUZZ_MIN_RUNS=N     fail a harness that executed fewer than N inputs (default 0: no minimum)
 #   FUZZ_PARALLEL=N     harnesses run at once (default: nproc; each uses one core)
 #   FUZZ_TARGETS="ply obj xml json pbrt"   subset to run
 #   FUZZ_CMAKE_ARGS=... extra configure arguments
@@ -18,6 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 FUZZ_SECONDS=${FUZZ_SECONDS:-60}
+FUZZ_MIN_RUNS=${FUZZ_MIN_RUNS:-0}
 FUZZ_PARALLEL=${FUZZ_PARALLEL:-$(nproc)}
 FUZZ_TARGETS=${FUZZ_TARGETS:-"ply obj xml json pbrt"}
 BUILD=${FUZZ_BUILD:-build/fuzz}   # the ctest Fuzz.LoadersRunClean builds in its own binary tree
@@ -64,8 +66,13 @@ failed=()
 wait_for() {
   local loader=$1
   if wait "${pids[$loader]}"; then
-    echo "fuzz $loader: ok ($(grep -o 'stat::number_of_executed_units: *[0-9]*' "$BUILD/fuzz-$loader.log" |
-      grep -o '[0-9]*$') runs)"
+    local runs
+    runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$BUILD/fuzz-$loader.log" | grep -o '[0-9]*$')
+    echo "fuzz $loader: ok, ${runs:-0} inputs executed in ${FUZZ_SECONDS}s ($(( ${runs:-0} / FUZZ_SECONDS ))/s)"
+    if [ "${runs:-0}" -lt "$FUZZ_MIN_RUNS" ]; then
+      echo "fuzz $loader: FAILED -- ${runs:-0} executions, fewer than FUZZ_MIN_RUNS=$FUZZ_MIN_RUNS"
+      failed+=("$loader")
+    fi
   else
     echo "fuzz $loader: FAILED -- log $BUILD/fuzz-$loader.log, inputs in $BUILD/artifacts/$loader/"
     grep -E "ERROR: |SUMMARY: |runtime error|Test unit written" "$BUILD/fuzz-$loader.log" | head -20 || true

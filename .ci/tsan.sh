@@ -6,6 +6,7 @@
 #
 #   TSAN_FILTER=...   gtest filter (default below: about a minute of tests under TSan on 2 cores)
 #   TSAN_JOBS=N       build parallelism (default: nproc)
+#   KILN_REQUIRE_SHARED=ON|OFF   configure fails without ../shared and clang + libFuzzer (default ON, as in CI)
 #
 # Debian's libtbb and Embree are not instrumented. .ci/tsan_tbb_glue.cpp (preloaded, and named as libtbb's ITT
 # collector) makes the scheduler's synchronisation visible to TSan; ignore_noninstrumented_modules=1 keeps TSan out
@@ -28,7 +29,7 @@ fi
 
 t0=$SECONDS
 mkdir -p "$BUILD"
-cmake --preset tsan > "$BUILD/configure.log" 2>&1 || { cat "$BUILD/configure.log" >&2; exit 1; }
+cmake --preset tsan -DKILN_REQUIRE_SHARED="${KILN_REQUIRE_SHARED:-ON}" > "$BUILD/configure.log" 2>&1 || { cat "$BUILD/configure.log" >&2; exit 1; }
 cmake --build --preset tsan -j"$JOBS" --target kiln_tests_renderer  # also builds `kiln` (the CLI tests run it)
 glue="$PWD/$BUILD/libkiln_tsan_tbb_glue.so"
 "${CXX:-c++}" -std=c++17 -O2 -Wall -Wextra -shared -fPIC .ci/tsan_tbb_glue.cpp -o "$glue" -ldl

@@ -133,6 +133,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             ++px.n;
             if (options.adaptive && options.adaptive->check_due(px.n)) px.converged = options.adaptive->converged(px);
           }
+          if (options.on_pixel_done) options.on_pixel_done();
         }
       progress.tile_done();
     }

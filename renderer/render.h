@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <atomic>
+#include <functional>
 #include <optional>
 
 #include "renderer/adaptive_sampling.h"
@@ -27,6 +28,8 @@ struct RenderOptions {
   // Stop sampling a pixel once its noise estimate is below the threshold (renderer/adaptive_sampling.h). Needs
   // every pixel's samples from index 0 in this film: not for --spp-range parts.
   std::optional<AdaptiveSampling> adaptive;
+  // Test hook: called after every pixel's samples (on the rendering thread), e.g. to cancel at a known point.
+  std::function<void()> on_pixel_done;
 };
 
 struct RenderStats {

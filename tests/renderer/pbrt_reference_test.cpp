@@ -15,6 +15,7 @@
 #include "renderer/image_compare.h"
 #include "renderer/image_io.h"
 #include "renderer/pixel_filter.h"
+#include "support/shared_data.h"
 
 namespace kiln::test {
 namespace {
@@ -27,7 +28,7 @@ constexpr double kP95Limit = 0.08;
 std::string killeroos(const std::string& rel) { return shared_dir() + "/scenes/pbrt/killeroos/" + rel; }
 
 TEST(PbrtReference, KillerooSimpleMatchesPbrtV4) {
-  if (!have_shared()) GTEST_SKIP() << "scenes not found under KILN_SHARED_DIR=" << shared_dir();
+  KILN_NEED_SHARED_PATH(killeroos("killeroo-simple.pbrt"));
   const SceneDesc scene = load_scene(killeroos("killeroo-simple.pbrt"));
   const auto world = build_scene_world(scene);
   const CameraDesc& cd = scene.cameras.at(0);

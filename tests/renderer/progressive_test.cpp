@@ -5,6 +5,8 @@
 #include <cstring>
 #include <thread>
 
+#include <tbb/task_arena.h>
+
 #include "core/error.h"
 #include "render_util.h"
 #include "renderer/convergence.h"
@@ -179,35 +181,44 @@ TEST(Progressive, CancelBetweenWavesKeepsCompleteWaves) {
     for (int x = 0; x < cam.width(); ++x) ASSERT_EQ(film.at(x, y).n, 4u);
 }
 
-// A SIGINT arriving in the middle of a wave: started tiles finish, the rest are skipped, and every pixel holds
-// either the previous wave's count or the new one, so the film's mean is still a valid image.
+// A SIGINT arriving in the middle of a wave: started pixels finish, the rest are skipped, and every pixel holds
+// either the previous wave's count or the new one, so the film's mean is still a valid image. The cancel is set
+// by the per-pixel test hook after two full waves and kPixelsIntoWave3 pixels of the third, on any thread count.
 TEST(Progressive, CancelInsideAWaveLeavesAValidFilm) {
-  const Furnace f(48);
+  constexpr int kRes = 48;
+  constexpr int kPixels = kRes * kRes;
+  constexpr int kPixelsIntoWave3 = 100;
+  const Furnace f(kRes);
   const Camera cam(f.scene.cameras[0]);
   std::atomic<bool> cancel{false};
+  std::atomic<int> pixels_done{0};
   RenderOptions ro;
   ro.cancel = &cancel;
   ro.tile_size = 4;
+  ro.on_pixel_done = [&] {
+    if (pixels_done.fetch_add(1) + 1 == 2 * kPixels + kPixelsIntoWave3) cancel.store(true);
+  };
   Film film(cam.width(), cam.height());
-  std::thread interrupter([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(150));
-    cancel.store(true);
-  });
   const ProgressiveResult res = render_progressive(*f.world, cam, f.settings, ro, 1u << 20, ProgressiveOptions{}, film);
-  interrupter.join();
   ASSERT_TRUE(res.stats.cancelled);
-  ASSERT_FALSE(res.waves.empty());
+  ASSERT_EQ(res.waves.size(), 3u);
   const WaveReport& last = res.waves.back();
+  EXPECT_TRUE(last.cancelled);
   const uint32_t done = res.spp;
-  if (last.cancelled) {
-    EXPECT_EQ(last.spp, done);  // the cancelled wave does not count as complete
-    const WaveRange r = wave_range(last.wave, 1u << 20);
-    for (int y = 0; y < cam.height(); ++y)
-      for (int x = 0; x < cam.width(); ++x) {
-        const uint32_t n = film.at(x, y).n;
-        ASSERT_TRUE(n == done || n == r.last) << "pixel " << x << "," << y << " has " << n << " samples";
-      }
-  }
+  EXPECT_EQ(done, 2u);        // waves 0 and 1: samples [0, 2)
+  EXPECT_EQ(last.spp, done);  // the cancelled wave does not count as complete
+  const WaveRange r = wave_range(last.wave, 1u << 20);
+  int advanced = 0;
+  for (int y = 0; y < cam.height(); ++y)
+    for (int x = 0; x < cam.width(); ++x) {
+      const uint32_t n = film.at(x, y).n;
+      ASSERT_TRUE(n == done || n == r.last) << "pixel " << x << "," << y << " has " << n << " samples";
+      advanced += n == r.last;
+    }
+  // The pixels that reached the hook, plus at most one pixel in flight on each other thread.
+  const int threads = tbb::this_task_arena::max_concurrency();
+  EXPECT_GE(advanced, kPixelsIntoWave3);
+  EXPECT_LE(advanced, kPixelsIntoWave3 + threads - 1);
   const Image img = film.mean();
   for (const Rgb& p : img.pixels()) ASSERT_TRUE(p.is_finite() && p.r > 0.0f);
 }

@@ -7,6 +7,7 @@
 #include "renderer/image_compare.h"
 #include "renderer/image_io.h"
 #include "renderer/tonemap.h"
+#include "support/shared_data.h"
 
 namespace kiln::test {
 namespace {
@@ -36,17 +37,56 @@ size_t camera_named(const SceneDesc& s, const std::string& image_name) {
   return 0;
 }
 
-#define REQUIRE_SHARED() \
-  if (!have_shared()) GTEST_SKIP() << "course scenes not found under KILN_SHARED_DIR=" << shared_dir()
+#define REQUIRE_SHARED() KILN_NEED_SHARED_PATH(shared_dir() + "/scenes/ceng795")
 
-// Issue 2: hw1_2021 LDR scenes, >= 99% of pixels within 3/255 of the course PNG.
+// 8-bit agreement counted over the pixels lit (any channel above 0/255) in either image: the course scenes are
+// mostly black background, which a black render would match too.
+struct LitMatch {
+  size_t lit = 0, matched = 0;
+  double fraction() const { return lit ? double(matched) / double(lit) : 0.0; }
+};
+LitMatch lit_match(const Image& a, const Image& reference, int tol) {
+  LitMatch m;
+  if (a.width() != reference.width() || a.height() != reference.height()) return m;
+  const auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  for (size_t i = 0; i < a.pixels().size(); ++i) {
+    bool lit = false, close = true;
+    for (int c = 0; c < 3; ++c) {
+      const int x = byte(a.pixels()[i][c]), y = byte(reference.pixels()[i][c]);
+      lit |= x > 0 || y > 0;
+      close &= std::abs(x - y) <= tol;
+    }
+    m.lit += lit;
+    m.matched += lit && close;
+  }
+  return m;
+}
+
+// Holds mine to >= min_fraction of the lit pixels within tol/255 of the reference, and prints the margin.
+void expect_lit_match(const Image& mine, const Image& reference, int tol, double min_fraction, const std::string& name) {
+  const LitMatch m = lit_match(mine, reference, tol);
+  std::printf("[ ldr ] %s: %zu lit pixels, %.4f within %d/255 (limit %.2f)\n", name.c_str(), m.lit, m.fraction(), tol,
+              min_fraction);
+  EXPECT_GT(m.lit, 0u) << name;
+  EXPECT_GE(m.fraction(), min_fraction) << name << ": " << m.matched << " of " << m.lit << " lit pixels";
+}
+
+// Block statistics, printed on success too so that CI logs show the margin to the limits.
+BlockStats reported_block_stats(const Image& mine, const Image& reference, const std::string& name) {
+  const BlockStats b = block_luminance_stats(mine, reference, 32);
+  std::printf("[ hdr ] %s: %zu blocks, median %.4f, p95 %.4f, mean ratio %.4f\n", name.c_str(), b.blocks,
+              b.median_rel, b.p95_rel, b.mean_ratio);
+  return b;
+}
+
+// Issue 2: hw1_2021 LDR scenes, >= 99% of the lit pixels within 3/255 of the course PNG.
 class Hw1Reference : public ::testing::TestWithParam<std::string> {};
 TEST_P(Hw1Reference, MatchesCoursePng) {
   REQUIRE_SHARED();
   const SceneDesc scene = load_scene(course("regression/hw1_2021/" + GetParam() + ".xml"));
   const Image mine = png_preview(render_course_camera(scene, 0, 0), scene, 0);
   const Image ref = read_image(course("regression/hw1_2021/" + GetParam() + ".png"));
-  EXPECT_GE(ldr_match_fraction(mine, ref, 3), 0.99);
+  expect_lit_match(mine, ref, 3, 0.99, GetParam());
 }
 INSTANTIATE_TEST_SUITE_P(Course, Hw1Reference,
                          ::testing::Values("simple", "two_spheres", "spheres", "cornellbox", "cornellbox_recursive",
@@ -58,16 +98,16 @@ TEST(Hw1Reference, ScienceTreeMatchesCoursePng) {
   REQUIRE_SHARED();
   const SceneDesc scene = load_scene(course("regression/hw1_2021/scienceTree.xml"));
   const Image mine = png_preview(render_course_camera(scene, 0, 0), scene, 0);
-  EXPECT_GE(ldr_match_fraction(mine, read_image(course("regression/hw1_2021/scienceTree.png")), 3), 0.99);
+  expect_lit_match(mine, read_image(course("regression/hw1_2021/scienceTree.png")), 3, 0.99, "scienceTree");
 }
 
-// Issue 3: BRDF spheres, >= 98% of pixels within 4/255 of the course PNG; the 2021 variants render.
+// Issue 3: BRDF spheres, >= 99% of the lit pixels within 4/255 of the course PNG; the 2021 variants render.
 class BrdfReference : public ::testing::TestWithParam<std::string> {};
 TEST_P(BrdfReference, MatchesCoursePng) {
   REQUIRE_SHARED();
   const SceneDesc scene = load_scene(course("brdf/" + GetParam() + ".xml"));
   const Image mine = png_preview(render_course_camera(scene, 0, 0), scene, 0);
-  EXPECT_GE(ldr_match_fraction(mine, read_image(course("brdf/reference/" + GetParam() + ".png")), 4), 0.98);
+  expect_lit_match(mine, read_image(course("brdf/reference/" + GetParam() + ".png")), 4, 0.99, GetParam());
   const SceneDesc s2021 = load_scene(course("brdf_2021/" + GetParam() + ".xml"));
   const Image img2021 = render_course_camera(s2021, 0, 0);
   for (const Rgb& c : img2021.pixels()) ASSERT_TRUE(c.is_finite() && !c.has_negative());
@@ -84,7 +124,7 @@ TEST_P(DirectLightingReference, MatchesCourseExr) {
   REQUIRE_SHARED();
   const SceneDesc scene = load_scene(course("directLighting/" + GetParam() + ".xml"));
   const Image mine = render_course_camera(scene, 0, kDirectLightingTestSpp);
-  const BlockStats b = block_luminance_stats(mine, read_exr(course("directLighting/" + GetParam() + ".exr")).rgb, 32);
+  const BlockStats b = reported_block_stats(mine, read_exr(course("directLighting/" + GetParam() + ".exr")).rgb, GetParam());
   EXPECT_LT(b.median_rel, 0.03);
   EXPECT_LT(b.p95_rel, 0.10);
 }
@@ -108,7 +148,7 @@ TEST_P(PathTracingReference, MatchesCourseExr) {
   const PtCase& c = GetParam();
   const SceneDesc scene = load_scene(course(std::string("pathTracing/cornellbox_jaroslav_path_") + c.scene + ".xml"));
   const Image mine = render_course_camera(scene, camera_named(scene, std::string(c.image) + ".exr"), 32);
-  const BlockStats b = block_luminance_stats(mine, read_exr(course(std::string("pathTracing/") + c.image + ".exr")).rgb, 32);
+  const BlockStats b = reported_block_stats(mine, read_exr(course(std::string("pathTracing/") + c.image + ".exr")).rgb, c.image);
   if (c.roulette) {
     EXPECT_NEAR(b.mean_ratio, 1.0, 0.10);
     EXPECT_LT(b.median_rel, 0.15);
@@ -129,7 +169,8 @@ TEST(PathTracingReference, DiffuseNextImportanceRussian) {
   REQUIRE_SHARED();
   const SceneDesc scene = load_scene(course("pathTracing/cornellbox_jaroslav_path_diffuse.xml"));
   const Image mine = render_course_camera(scene, camera_named(scene, "diffuse_next_importance_russian.exr"), 32);
-  const BlockStats b = block_luminance_stats(mine, read_exr(course("pathTracing/diffuse_next_importance_russian.exr")).rgb, 32);
+  const BlockStats b = reported_block_stats(mine, read_exr(course("pathTracing/diffuse_next_importance_russian.exr")).rgb,
+                                            "diffuse_next_importance_russian");
   EXPECT_NEAR(b.mean_ratio, 1.0, 0.10);
   EXPECT_LT(b.median_rel, 0.15);
 }
@@ -143,7 +184,7 @@ TEST_P(PathTracingReferenceFullSpp, MatchesCourseExr) {
   const PtCase& c = GetParam();
   const SceneDesc scene = load_scene(course(std::string("pathTracing/cornellbox_jaroslav_path_") + c.scene + ".xml"));
   const Image mine = render_course_camera(scene, camera_named(scene, std::string(c.image) + ".exr"), 0);
-  const BlockStats b = block_luminance_stats(mine, read_exr(course(std::string("pathTracing/") + c.image + ".exr")).rgb, 32);
+  const BlockStats b = reported_block_stats(mine, read_exr(course(std::string("pathTracing/") + c.image + ".exr")).rgb, c.image);
   if (c.roulette) {
     EXPECT_NEAR(b.mean_ratio, 1.0, 0.10);
     EXPECT_LT(b.median_rel, 0.15);
@@ -155,6 +196,89 @@ TEST_P(PathTracingReferenceFullSpp, MatchesCourseExr) {
 INSTANTIATE_TEST_SUITE_P(Course, PathTracingReferenceFullSpp,
                          ::testing::Values(PtCase{"glass", "glass", false},
                                            PtCase{"glass", "glass_importance_russian", true}),
+                         [](const auto& tp) { return std::string(tp.param.image); });
+
+// The other ten pathTracing/ cameras, at kNoiseAwareSpp (a quarter of the budget above per camera), judged by the
+// noise both images carry at their sample counts: the per-pixel differences mine - reference have the true image
+// cancelled, so their mean divided by their own standard error (spread / sqrt n) is a paired t statistic, ~N(0, 1)
+// when both estimate the same image, whatever either's noise. Over the whole image (262144 pixels) it must stay
+// within 4.5 (two-sided 7e-6 per camera): a 1% gain is ~10 standard errors at 8 spp. The 32x32 blocks' statistics
+// are printed for the log only: the course's literal roulette and small-light NEE are heavy-tailed, and their
+// worst blocks reach |z| 5-6 with no sign of bias in the image statistic.
+constexpr uint32_t kNoiseAwareSpp = 8;
+constexpr double kMaxImageZ = 4.5;
+
+struct NoiseAwareStats {
+  double median_z = 0, p95_z = 0, max_z = 0, mean_z = 0;
+  size_t blocks = 0;
+};
+
+// Mean and standard error of the luminance differences over pixels [x0, x1) x [y0, y1).
+Estimate difference_estimate(const Image& mine, const Image& reference, int x0, int x1, int y0, int y1) {
+  double sum = 0, sum2 = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const size_t i = size_t(y) * size_t(mine.width()) + size_t(x);
+      const double d = double(mine.pixels()[i].luminance()) - double(reference.pixels()[i].luminance());
+      sum += d;
+      sum2 += d * d;
+    }
+  return estimate_from_sums(sum, sum2, double((x1 - x0) * (y1 - y0)));
+}
+
+double z_of(const Estimate& e) { return e.stderr_ > 0 ? std::abs(e.mean) / e.stderr_ : (e.mean == 0 ? 0 : INFINITY); }
+
+NoiseAwareStats noise_aware_block_stats(const Image& mine, const Image& reference, int block) {
+  double ref_sum = 0;
+  for (const Rgb& p : reference.pixels()) ref_sum += p.luminance();
+  const double ref_mean = ref_sum / double(reference.pixels().size());
+  std::vector<double> z;
+  for (int y = 0; y + block <= mine.height(); y += block)
+    for (int x = 0; x + block <= mine.width(); x += block) {
+      double r = 0;
+      for (int yy = y; yy < y + block; ++yy)
+        for (int xx = x; xx < x + block; ++xx) r += reference.pixels()[size_t(yy) * size_t(mine.width()) + size_t(xx)].luminance();
+      if (r / double(block * block) < 1e-3 * ref_mean) continue;  // black in the reference: nothing to compare
+      z.push_back(z_of(difference_estimate(mine, reference, x, x + block, y, y + block)));
+    }
+  NoiseAwareStats s;
+  s.blocks = z.size();
+  if (z.empty()) return s;
+  std::sort(z.begin(), z.end());
+  s.median_z = z[z.size() / 2];
+  s.p95_z = z[std::min(z.size() - 1, size_t(0.95 * double(z.size())))];
+  s.max_z = z.back();
+  s.mean_z = z_of(difference_estimate(mine, reference, 0, mine.width(), 0, mine.height()));
+  return s;
+}
+
+class PathTracingNoiseAware : public ::testing::TestWithParam<PtCase> {};
+TEST_P(PathTracingNoiseAware, MatchesCourseExrWithinTheNoise) {
+  REQUIRE_SHARED();
+  const PtCase& c = GetParam();
+  const SceneDesc scene = load_scene(course(std::string("pathTracing/cornellbox_jaroslav_path_") + c.scene + ".xml"));
+  const CameraDesc& cd = scene.cameras.at(camera_named(scene, std::string(c.image) + ".exr"));
+  const auto world = build_scene_world(scene);
+  const Image mine = render_image(*world, cd, scene_settings(cd, scene, world->features), kNoiseAwareSpp);
+  const Image ref = read_exr(course(std::string("pathTracing/") + c.image + ".exr")).rgb;
+  const NoiseAwareStats s = noise_aware_block_stats(mine, ref, 32);
+  reported_block_stats(mine, ref, c.image);
+  std::printf("[ z   ] %s at %u spp: %zu blocks, |z| median %.2f, p95 %.2f, max %.2f; image |z| %.2f\n", c.image,
+              kNoiseAwareSpp, s.blocks, s.median_z, s.p95_z, s.max_z, s.mean_z);
+  ASSERT_GT(s.blocks, 100u);
+  EXPECT_LT(s.mean_z, kMaxImageZ);
+}
+INSTANTIATE_TEST_SUITE_P(Course, PathTracingNoiseAware,
+                         ::testing::Values(PtCase{"diffuse", "diffuse", false},
+                                           PtCase{"diffuse", "diffuse_importance", false},
+                                           PtCase{"diffuse", "diffuse_russian", true},
+                                           PtCase{"diffuse", "diffuse_importance_russian", true},
+                                           PtCase{"diffuse", "diffuse_next_importance", false},
+                                           PtCase{"glass", "glass_importance", false},
+                                           PtCase{"glass", "glass_russian", true},
+                                           PtCase{"glass", "glass_next", false},
+                                           PtCase{"glass", "glass_next_russian", true},
+                                           PtCase{"glass", "glass_next_importance_russian", true}),
                          [](const auto& tp) { return std::string(tp.param.image); });
 
 }  // namespace

@@ -10,12 +10,12 @@
 #include "core/error.h"
 #include "render_util.h"
 #include "renderer/interaction.h"
+#include "support/shared_data.h"
 
 namespace kiln::test {
 namespace {
 
-#define REQUIRE_SHARED() \
-  if (!have_shared()) GTEST_SKIP() << "course scenes not found under KILN_SHARED_DIR=" << shared_dir()
+#define REQUIRE_SHARED() KILN_NEED_SHARED_PATH(shared_dir() + "/scenes/ceng795")
 
 std::string bundled(const std::string& rel) { return std::string(KILN_SOURCE_DIR) + "/scenes/" + rel; }
 

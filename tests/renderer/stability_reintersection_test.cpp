@@ -95,10 +95,9 @@ Vec3f point_on(const World& w, uint32_t shape, Rng& rng) {
 
 // Why: the spawned continuation (any direction: reflection or transmission side) and the shadow ray towards a
 // light must never report the surface they start on: that is shadow acne (black speckles) or a lost bounce.
-// Known failure (reported to the lead): spheres smaller than ~1e-4 within 1/32 of the origin. core/ray.h moves
-// such points by the fixed absolute kOffsetFloatScale = 1/65536, more than the radius, so inward rays start past
-// the centre and hit the far side at t ~ 0, and grazing shadow rays turn back into the sphere. Sizing that nudge
-// by the scene (256 ulps of its largest coordinate) removes every self-hit here.
+// The hardest cases are spheres smaller than ~1e-4 near the origin: any fixed absolute nudge exceeds their radius
+// (inward rays start past the centre and hit the far side at t ~ 0), which is why core/ray.h sizes the offset by
+// 256 ulps of the hit point's largest coordinate.
 TEST_P(Reintersection, SpawnedRaysDoNotHitTheirOwnSurface) {
   Rng rng(77, 1);
   size_t spawned = 0, self_hits = 0;

@@ -40,9 +40,8 @@ class Scale : public ::testing::TestWithParam<std::tuple<AccelKind, float>> {};
 
 // Why: the same Cornell box at 1e-4, 1 and 1e4 units must render the same image (block means within tight
 // tolerances, no NaN), for both accelerators.
-// Known failure at 1e-4 (reported to the lead): core/ray.h offsets points with |coordinate| < 1/32 by the fixed
-// absolute kOffsetFloatScale = 1/65536, which is 15% of a box of half-size 1e-4, so bounce and shadow rays start
-// far off their surfaces (blocks differ by 49% at p95, the mean by 3%).
+// At 1e-4 this holds only because core/ray.h sizes the origin offset by the hit point's own magnitude; a fixed
+// absolute nudge (e.g. 1/65536) is 15% of that box and moves the blocks by ~50% at p95.
 TEST_P(Scale, ScaledBoxRendersTheSameImage) {
   const auto [accel, scale] = GetParam();
   const ScaledRender unit = render_at_scale(1.0f, accel);

@@ -108,10 +108,10 @@ TEST_P(Stiff, DielectricsVanishInAFurnace) {
   }
 }
 
-// Why: the same furnace with unbounded depth and Russian roulette: still unbiased and finite. Only the image mean
-// is tested: roulette after entering eta = 10 glass survives with probability ~(1 - F)/eta^2 and the survivors
-// carry ~eta^2 more weight on the way out (renderer/path_tracer.cpp decides survival on beta without undoing the
-// radiance scaling, pbrt-v4's etaScale), so per-block variance estimates are dominated by rare heavy samples.
+// Why: the same furnace with unbounded depth and Russian roulette: still unbiased and finite, and no block off L0.
+// renderer/path_tracer.cpp decides survival on beta times the product of eta^2 over transmissions (pbrt-v4's
+// etaScale); deciding on beta alone would kill ~99% of the paths inside eta = 10 glass and make the survivors
+// rare heavy samples.
 TEST_P(Stiff, DielectricsWithRouletteStayUnbiased) {
   SceneDesc s = furnace_with_glass(kResolution);
   const auto w = build_world(s, world_options());
@@ -120,6 +120,7 @@ TEST_P(Stiff, DielectricsWithRouletteStayUnbiased) {
   EXPECT_TRUE(all_finite_non_negative(r.mean()));
   const MeanEstimate m = film_mean(r.film);
   EXPECT_NEAR(m.mean, kFurnaceRadiance, kMaxMeanZ * m.se + 1e-4) << "+- " << m.se;
+  EXPECT_LT(max_abs(block_z(r.film, kBlock, kFurnaceRadiance)), kMaxBlockZ);
 }
 
 // Why: a glossy lobe of exponent 1e5 is a near-delta peak (normalisation ~1.6e4, cos^p underflowing a degree

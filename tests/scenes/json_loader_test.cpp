@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "scenes/json_loader.h"
 #include "scenes/material_mapping.h"
+#include "support/shared_data.h"
 
 namespace kiln {
 namespace {
@@ -377,7 +378,7 @@ void expect_cornell_box(const SceneDesc& s, size_t objects) {
 class Cs171SharedConfigs : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(dir_)) GTEST_SKIP() << "shared CS171 configs not found at " << dir_;
+    KILN_NEED_SHARED_PATH(dir_);
   }
   const std::string dir_ = std::string(KILN_SHARED_DIR) + "/scenes/cs171/configs";
 };

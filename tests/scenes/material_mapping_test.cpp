@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "scenes/loader.h"
+#include "support/shared_data.h"
 
 namespace kiln {
 namespace {
@@ -331,12 +332,7 @@ std::vector<Material> load_materials(const std::string& rel) {
   return out;
 }
 
-#define REQUIRE_SHARED()                                                                                 \
-  do {                                                                                                   \
-    if (!std::filesystem::exists(kShared / "scenes")) {                                                  \
-      GTEST_SKIP() << "course scenes not found at " << kShared << " (configure with -DKILN_SHARED_DIR)"; \
-    }                                                                                                    \
-  } while (0)
+#define REQUIRE_SHARED() KILN_NEED_SHARED_PATH(kShared / "scenes")
 
 TEST(MaterialMappingScenes, BrdfFolderMapsEveryKind) {
   REQUIRE_SHARED();

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "scenes/obj_loader.h"
+#include "support/shared_data.h"
 
 namespace kiln {
 namespace {
@@ -174,7 +175,7 @@ TEST(ObjLoader, MissingFileIsAnErrorNamingIt) {
 class Cs171Assets : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!std::filesystem::exists(dir_)) GTEST_SKIP() << "shared CS171 assets not found at " << dir_;
+    KILN_NEED_SHARED_PATH(dir_);
   }
   const std::string dir_ = std::string(KILN_SHARED_DIR) + "/scenes/cs171/assets/";
 };

@@ -12,6 +12,7 @@
 #include "scenes/pbrt_loader.h"
 #include "scenes/pbrt_spectrum.h"
 #include "scenes/pbrt_tokenizer.h"
+#include "support/shared_data.h"
 
 namespace kiln {
 namespace {
@@ -622,7 +623,7 @@ TEST(PbrtSpectrum, BlackbodyChromaticityFollowsThePlanckianLocus) {
 
 TEST(PbrtKilleroo, SimpleSceneLoads) {
   const std::string path = std::string(KILN_SHARED_DIR) + "/scenes/pbrt/killeroos/killeroo-simple.pbrt";
-  if (!fs::exists(path)) GTEST_SKIP() << path << " not found (configure with -DKILN_SHARED_DIR)";
+  KILN_NEED_SHARED_PATH(path);
   LoadOptions lo;
   lo.defer_subdivision = true;
   const SceneDesc s = load_scene(path, lo);

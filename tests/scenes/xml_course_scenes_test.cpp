@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "scenes/ply_loader.h"
 #include "scenes/xml_loader.h"
+#include "support/shared_data.h"
 
 namespace kiln {
 namespace {
@@ -18,13 +19,7 @@ namespace fs = std::filesystem;
 
 const fs::path kCeng795 = fs::path(KILN_SHARED_DIR) / "scenes" / "ceng795";
 
-#define REQUIRE_SHARED_SCENES()                                                  \
-  do {                                                                           \
-    if (!fs::is_directory(kCeng795)) {                                           \
-      GTEST_SKIP() << "shared CENG795 scenes not found at " << kCeng795.string() \
-                   << " (configure with -DKILN_SHARED_DIR=...)";                 \
-    }                                                                            \
-  } while (false)
+#define REQUIRE_SHARED_SCENES() KILN_NEED_SHARED_PATH(kCeng795)
 
 SceneDesc load(const std::string& rel) { return load_ceng795_xml((kCeng795 / rel).string()); }
 

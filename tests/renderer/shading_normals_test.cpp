@@ -1,0 +1,133 @@
+// Shading normals at renderer level: a flat floor whose per-vertex normals lean 36.87 degrees away from the face
+// normal, lit by a point light straight above the point the camera sees. The Lambertian radiance a/pi I/d^2 cos is
+// taken about the shading normal (cos = 0.8), not the geometric one (1). An instance of the same mesh under a
+// non-uniform scale carries its normals by the inverse transpose (cos = 0.5547; the forward matrix would give 0.936),
+// and a mesh flagged smooth without normals gets area-weighted vertex normals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render_util.h"
+#include "renderer/interaction.h"
+
+namespace kiln::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr float kAlbedo = 0.5f;
+constexpr float kIntensity = 4.0f;
+constexpr float kLightHeight = 2.0f;
+constexpr double kRelTol = 2e-4;  // delta light: no Monte Carlo noise
+const Vec3f kTilted = normalize(Vec3f{0.6f, 0.0f, 0.8f});
+
+SceneDesc floor_scene() {
+  SceneDesc s;
+  s.format = "test";
+  BrdfDesc lambert;
+  lambert.kind = BrdfKind::Lambert;
+  s.brdfs.push_back(lambert);
+  MaterialDesc m;
+  m.brdf = 0;
+  m.diffuse = Rgb(kAlbedo);
+  s.materials.push_back(m);
+  s.point_lights.push_back({{0.0f, 0.0f, kLightHeight}, Rgb(kIntensity)});
+  CameraDesc cam;
+  cam.id = "1";
+  cam.position = {0.0f, -3.0f, 3.0f};
+  cam.gaze = normalize(Vec3f{0.0f, 3.0f, -3.0f});
+  cam.up = {0, 0, 1};
+  cam.use_fov = true;
+  cam.fov_y_deg = 0.2f;
+  cam.width = cam.height = 4;
+  s.cameras.push_back(cam);
+  return s;
+}
+
+MeshDesc floor_mesh(bool with_normals) {
+  MeshDesc floor;
+  floor.name = "floor";
+  floor.positions = {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};
+  floor.indices = {0, 1, 2, 0, 2, 3};  // +z
+  if (with_normals) floor.normals.assign(4, kTilted);
+  floor.material = 0;
+  return floor;
+}
+
+double expected_radiance(double cos_shading) {
+  return kAlbedo / kPi * kIntensity / (kLightHeight * kLightHeight) * cos_shading;
+}
+
+void expect_radiance(const SceneDesc& s, double cos_shading, const char* what) {
+  const auto w = build_world(s, {});
+  PathSettings kiln;
+  kiln.max_depth = 1;
+  kiln.russian_roulette = false;
+  const double want = expected_radiance(cos_shading);
+  for (const auto& [name, settings] :
+       {std::pair<const char*, IntegratorSettings>{"kiln", kiln}, {"course ray tracer", CourseRaySettings{}}}) {
+    const Estimate e = estimate_mean(*w, settings, s.cameras[0], 2000);
+    EXPECT_NEAR(e.mean, want, kRelTol * want) << what << ", " << name << " (geometric normal: " << expected_radiance(1)
+                                              << ")";
+  }
+}
+
+TEST(ShadingNormals, MeshVertexNormalsShadeTheSurface) {
+  SceneDesc s = floor_scene();
+  s.meshes.push_back(floor_mesh(true));
+  expect_radiance(s, kTilted.z, "mesh normals");
+  // The same floor without normals is shaded by its face normal.
+  SceneDesc flat = floor_scene();
+  flat.meshes.push_back(floor_mesh(false));
+  expect_radiance(flat, 1.0, "flat");
+}
+
+TEST(ShadingNormals, InstanceNormalsFollowTheInverseTranspose) {
+  SceneDesc s = floor_scene();
+  MeshDesc base = floor_mesh(true);
+  s.meshes.push_back(base);
+  s.meshes.back().is_instance_base = true;
+  s.meshes.back().visible = false;
+  InstanceDesc in;
+  in.name = "scaled floor";
+  in.base_mesh = 0;
+  in.material = 0;
+  // Scaling z by 2 keeps the plane at z = 0 and tilts the normals further.
+  in.to_world = Transform::scale({1, 1, 2});
+  s.instances.push_back(in);
+  const Vec3f n = normalize(Vec3f{kTilted.x, kTilted.y, kTilted.z / 2.0f});
+  expect_radiance(s, n.z, "instance under scale(1, 1, 2)");
+}
+
+// A roof of two faces meeting at the ridge x = 0 (slopes +-30 degrees, equal areas): smooth vertex normals are
+// the face normal at the eaves and the average (straight up) at the ridge, so at the ridge's foot of the point
+// light the shading normal is +z while both faces' geometric normals lean 30 degrees.
+TEST(ShadingNormals, SmoothMeshGetsAreaWeightedVertexNormals) {
+  SceneDesc s = floor_scene();
+  const float run = 1.0f, rise = run * std::tan(float(kPi) / 6.0f);
+  MeshDesc roof;
+  roof.name = "roof";
+  roof.positions = {{-run, -5, -rise}, {0, -5, 0}, {0, 5, 0}, {-run, 5, -rise}, {run, -5, -rise}, {run, 5, -rise}};
+  roof.indices = {0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2};
+  roof.material = 0;
+  roof.smooth = true;
+  s.meshes.push_back(roof);
+  // The camera sees x slightly left of the ridge, where the interpolated normal is almost +z.
+  s.cameras[0].position = {-0.01f, -3.0f, 3.0f};
+  s.cameras[0].gaze = normalize(Vec3f{0.0f, 3.0f, -3.0f});
+  s.point_lights[0].position = {-0.01f, 0.0f, kLightHeight};
+  // Shading normal at x = -0.01: lerp between up (ridge) and the left face normal (-sin30, 0, cos30) by 0.01.
+  const double t = 0.01 / run;
+  const Vec3f ns = normalize(Vec3f{float(-0.5 * t), 0.0f, float((1 - t) + t * std::cos(kPi / 6))});
+  // The point's height is -0.01 tan 30 below the ridge: the light is kLightHeight + that away.
+  const double d = kLightHeight + 0.01 * std::tan(kPi / 6);
+  const double want = kAlbedo / kPi * kIntensity / (d * d) * double(ns.z);
+  const auto w = build_world(s, {});
+  PathSettings kiln;
+  kiln.max_depth = 1;
+  kiln.russian_roulette = false;
+  const Estimate e = estimate_mean(*w, kiln, s.cameras[0], 2000);
+  EXPECT_NEAR(e.mean, want, 1e-3 * want) << "geometric normal would give " << want * std::cos(kPi / 6) / double(ns.z);
+}
+
+}  // namespace
+}  // namespace kiln::test
