@@ -136,6 +136,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     if (invisible(m.material, m.emission)) continue;
     // Instance bases stay in the description: their prototype copy above was taken from it.
     MeshDesc* take = consumable && !m.is_instance_base ? &consumable->meshes[i] : nullptr;
+    const bool has_uvs = !m.uvs.empty() && m.uvs.size() == m.positions.size();  // before `take` empties m
     TriangleMesh tm = take ? TriangleMesh{take_transformed_points(take->positions, m.to_world),
                                           take_with_spare_capacity(take->indices)}
                            : TriangleMesh{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
@@ -143,7 +144,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     sd.material = m.material;
     sd.smooth = m.smooth || !m.normals.empty();
     sd.textures = bind_textures(m.textures, m.material);
-    if (sd.textures >= 0 && !m.uvs.empty() && m.uvs.size() == m.positions.size()) {
+    if (sd.textures >= 0 && has_uvs) {
       sd.uvs = int(w.uvs.size());
       w.uvs.push_back(take ? std::exchange(take->uvs, {}) : m.uvs);
     }
