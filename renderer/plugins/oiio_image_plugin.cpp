@@ -65,6 +65,13 @@ float max_of(OIIO::TypeDesc t) {
   }
 }
 
+// OpenImageIO may report one problem several times, a line each: Kiln's messages are one line.
+std::string first_line(const std::string& e) {
+  std::string line = e.substr(0, e.find('\n'));
+  while (!line.empty() && (line.back() == ' ' || line.back() == '\r')) line.pop_back();
+  return line;
+}
+
 void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std::string& error) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
@@ -75,7 +82,7 @@ void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std:
   OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(path));
   OIIO::ImageSpec spec;
   if (!h || !ts->get_imagespec(h, nullptr, 0, spec) || !ts->good(h)) {
-    error = ts->geterror();
+    error = first_line(ts->geterror());
     if (error.empty()) error = "not an image OpenImageIO can read";
     return nullptr;
   }
@@ -89,7 +96,7 @@ void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std:
   opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
   opt.interpmode = OIIO::TextureOpt::InterpClosest;
   if (!ts->texture(h, ts->get_perthread_info(), opt, 0.5f, 0.5f, 0, 0, 0, 0, 3, probe)) {
-    error = ts->geterror();
+    error = first_line(ts->geterror());
     if (error.empty()) error = "its pixels cannot be read";
     return nullptr;
   }

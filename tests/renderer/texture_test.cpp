@@ -247,5 +247,47 @@ TEST(ConstantTexture, EqualsTheUntexturedMaterialUnderEveryIntegrator) {
   }
 }
 
+// The consuming world build moves a mesh's arrays out of the description: its uv must survive the move.
+TEST(TexturedWorld, ConsumedMeshKeepsItsTextureCoordinates) {
+  SceneDesc s;
+  s.source_path = "test.xml";
+  MaterialDesc m;
+  m.diffuse = Rgb(0.5f);
+  s.materials.push_back(m);
+  TextureDesc t;
+  t.source = TextureSource::Checkerboard;
+  t.name = "Texture id=1";
+  s.textures.push_back(t);
+  MeshDesc mesh;
+  mesh.name = "Mesh id=1";
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.uvs = {{0.1f, 0.2f}, {0.9f, 0.2f}, {0.1f, 0.8f}};
+  mesh.indices = {0, 1, 2};
+  mesh.material = 0;
+  mesh.textures = {0};
+  s.meshes.push_back(mesh);
+  WorldOptions wo;
+  wo.build_accelerator = false;
+  const auto w = build_world_taking_meshes(s, wo);
+  ASSERT_EQ(w->shape_data.size(), 1u);
+  ASSERT_GE(w->shape_data[0].textures, 0);
+  ASSERT_GE(w->shape_data[0].uvs, 0);
+  EXPECT_EQ(w->uvs[size_t(w->shape_data[0].uvs)][1].x, 0.9f);
+}
+
+TEST(TexturedWorld, NoTextureSystemWithoutTexturesNorWithOnlyProceduralOnes) {
+  SceneDesc s = load_scene(std::string(KILN_SOURCE_DIR) + "/scenes/default.xml");
+  EXPECT_FALSE(build_scene_world(s)->textures);
+  TextureDesc t;
+  t.source = TextureSource::Perlin;
+  t.name = "Texture id=1";
+  s.textures.push_back(t);
+  for (SphereDesc& sp : s.spheres) sp.textures = {0};
+  const auto w = build_scene_world(s);
+  ASSERT_TRUE(w->textures);
+  EXPECT_FALSE(w->textures->stats().texture_system_built);
+  EXPECT_EQ(w->textures->stats().procedural, 1u);
+}
+
 }  // namespace
 }  // namespace kiln::test
