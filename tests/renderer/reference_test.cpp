@@ -182,10 +182,10 @@ Image box_downsample(const Image& full, int factor) {
   return out;
 }
 
-// Its noise is heavy-tailed (paths through the glass pots and the door gap, no MIS under the course's rules): measured
-// at 320x180, block median / p95 were 0.209 / 0.778 at 16 spp, 0.124 / 0.539 at 64 and 0.072 / 0.420 at 256, falling
-// as 1/sqrt(spp); the p95 < 12% limit needs some 4000 spp (~1.5 CPU-hours), beyond ctest's budget. So the test runs
-// only when KILN_VEACH_SPP names the spp (e.g. 4096) and reports itself skipped otherwise.
+// Measured at 320x180 (block median / p95 / MSE): 16 spp 0.209 / 0.778 / 18343, 64 spp 0.124 / 0.539 / 2067,
+// 256 spp 0.072 / 0.420 / 787, 1024 spp 0.044 / 0.380 / 541. The median falls like noise; the p95 does not: the
+// block-ratio map shows the floor's checkerboard out of phase with the reference's (README, "Textures"), so this test
+// does not pass yet. It costs ~20 CPU-minutes per 1000 spp, so it runs only when KILN_VEACH_SPP names the spp.
 inline constexpr int kVeachDownsample = 4;
 uint32_t veach_spp() {
   const char* v = std::getenv("KILN_VEACH_SPP");
@@ -195,7 +195,7 @@ class VeachAjarReference : public ::testing::Test {};
 TEST_F(VeachAjarReference, BlockLuminanceMatchesCourseExr) {
   REQUIRE_SHARED();
   const uint32_t spp = veach_spp();
-  if (spp == 0) GTEST_SKIP() << "set KILN_VEACH_SPP (4096 or more) to render veach-ajar against its reference";
+  if (spp == 0) GTEST_SKIP() << "set KILN_VEACH_SPP (e.g. 1024) to render veach-ajar against its reference";
   SceneDesc scene = load_scene(course("veach-ajar/scene.xml"));
   ASSERT_TRUE(scene.unsupported.empty());
   const Image ref = box_downsample(read_exr(course("veach-ajar/VeachAjar.exr")).rgb, kVeachDownsample);
