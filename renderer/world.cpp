@@ -118,8 +118,8 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     w.textures = std::make_unique<SceneTextures>(scene, options.texture_system);
     w.features |= kFeatureTextures;
   }
-  const auto bind_textures = [&](const std::vector<int>& textures, int material) {
-    return w.textures && !textures.empty() ? w.textures->bind(scene, textures, material) : -1;
+  const auto bind_textures = [&](const std::vector<int>& textures, int material, const Transform& to_world) {
+    return w.textures && !textures.empty() ? w.textures->bind(scene, textures, material, to_world) : -1;
   };
 
   WorldGeometry& g = w.geometry;
@@ -143,7 +143,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     ShapeData sd;
     sd.material = m.material;
     sd.smooth = m.smooth || !m.normals.empty();
-    sd.textures = bind_textures(m.textures, m.material);
+    sd.textures = bind_textures(m.textures, m.material, m.to_world);
     if (sd.textures >= 0 && has_uvs) {
       sd.uvs = int(w.uvs.size());
       w.uvs.push_back(take ? std::exchange(take->uvs, {}) : m.uvs);
@@ -181,7 +181,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     if (invisible(s.material, s.emission)) continue;
     ShapeData sd;
     sd.material = s.material;
-    sd.textures = bind_textures(s.textures, s.material);
+    sd.textures = bind_textures(s.textures, s.material, s.to_world);
     const bool emits = s.emission && !s.emission->is_black();
     if (emits && !(s.radius > 0.0f)) {
       w.warnings.push_back(s.name + ": zero-radius light sphere emits nothing; left out of the lights");
@@ -221,7 +221,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       sd.normals = pn;
       w.features |= kFeatureSmoothNormals;
     }
-    sd.textures = bind_textures(inst.textures, sd.material);
+    sd.textures = bind_textures(inst.textures, sd.material, inst.to_world);
     if (sd.textures >= 0 && !base.uvs.empty() && base.uvs.size() == base.positions.size()) {
       int& pu = prototype_uvs[size_t(proto)];
       if (pu == -1) {

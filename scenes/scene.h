@@ -120,7 +120,7 @@ struct MaterialDesc {
 inline constexpr int kMaxSubdivisionLevels = 7;
 
 // Textures (CENG795 spec §8; README "Textures"). Image textures are read through OpenImageIO's TextureSystem;
-// Perlin noise and the checkerboard are evaluated at the world-space hit point.
+// Perlin noise and the checkerboard are evaluated at the hit point in the object's own space.
 enum class TextureSource { Image, Perlin, Checkerboard };
 // What a texture does to the surface it is attached to.
 enum class DecalMode { ReplaceKd, BlendKd, ReplaceKs, ReplaceAll, ReplaceNormal, BumpNormal, ReplaceBackground };

@@ -1,6 +1,6 @@
 // The course's 3-D checkerboard (spec §8; the homework's definition): with c(x) = int((x + Offset) * Scale) mod 2,
 // truncated towards zero as C does (so the cell around 0 is twice as wide), the point is white where
-// (c(x) xor c(y)) == c(z) and black elsewhere. Evaluated at the world-space hit point.
+// (c(x) xor c(y)) == c(z) and black elsewhere. Evaluated at the hit point in the object's own space.
 #pragma once
 #include <cmath>
 

@@ -111,8 +111,10 @@ SceneTextures::~SceneTextures() {
   if (system_) api_->texture_system_destroy(system_);
 }
 
-int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures, int material) {
+int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures, int material,
+                        const Transform& to_world) {
   TextureBinding b;
+  b.to_object = to_world.inverse();
   bool any = false;
   for (const int i : textures) {
     const CompiledTexture& t = textures_[size_t(i)];
@@ -222,22 +224,22 @@ TextureCacheStats SceneTextures::cache_stats() const {
 
 bool apply_textures(const SceneTextures& tex, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
   const TextureBinding& b = tex.bindings()[size_t(si.textures)];
+  const Vec3f p = b.to_object.point(si.p);  // where procedural textures are evaluated
   if (b.all >= 0) {
-    unlit = tex.value(b.all, si.uv, si.p);
+    unlit = tex.value(b.all, si.uv, p);
     return true;
   }
-  if (b.normal >= 0) si.ns = tex.mapped_normal(tex.textures()[size_t(b.normal)], si.ns, si.uv, si.p, si.dpdu);
-  if (b.bump >= 0)
-    si.ns = tex.bumped_normal(tex.textures()[size_t(b.bump)], si.ns, si.uv, si.p, si.dpdu, si.dpdv);
+  if (b.normal >= 0) si.ns = tex.mapped_normal(tex.textures()[size_t(b.normal)], si.ns, si.uv, p, si.dpdu);
+  if (b.bump >= 0) si.ns = tex.bumped_normal(tex.textures()[size_t(b.bump)], si.ns, si.uv, p, si.dpdu, si.dpdv);
   if (b.material >= 0 && si.material) {
     const TexturableMaterial& tm = tex.materials()[size_t(b.material)];
     scratch = tm.prototype;
     Rgb kd = tm.kd, ks = tm.ks;
     if (b.kd >= 0) {
-      const Rgb texel = tex.value(b.kd, si.uv, si.p);
+      const Rgb texel = tex.value(b.kd, si.uv, p);
       kd = b.blend_kd ? (kd + texel) * 0.5f : texel;
     }
-    if (b.ks >= 0) ks = tex.value(b.ks, si.uv, si.p);
+    if (b.ks >= 0) ks = tex.value(b.ks, si.uv, p);
     set_reflectances(scratch, kd, ks, tm.lambert_scale);
     si.material = &scratch;
   }

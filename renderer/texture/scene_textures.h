@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/transform.h"
 #include "materials/material.h"
 #include "renderer/image_plugin.h"
 #include "scenes/scene.h"
@@ -47,6 +48,9 @@ struct TextureBinding {
   int kd = -1, ks = -1, all = -1, normal = -1, bump = -1;
   bool blend_kd = false;
   int material = -1;  // index into SceneTextures::materials (the texturable prototype) or -1: no k_d / k_s texture
+  // Procedural textures are evaluated in the object's own space (the course's: veach-ajar's floor, scaled 1.8x along
+  // x by its transformation, has squares 1.8x wider along x in its reference).
+  Transform to_object;
 };
 
 // A material whose k_d / k_s a texture sets: built once with placeholder reflectances so that no lobe a texture
@@ -73,9 +77,9 @@ class SceneTextures {
 
   // A binding for a shape with these textures (indices into SceneDesc::textures) and material; -1 when they do nothing
   // to a surface (e.g. only a background texture).
-  int bind(const SceneDesc& scene, const std::vector<int>& textures, int material);
+  int bind(const SceneDesc& scene, const std::vector<int>& textures, int material, const Transform& to_world);
 
-  // Texture value at a hit (colour, normalised, degamma applied).
+  // Texture value at a hit (colour, normalised, degamma applied); p in the object's own space.
   Rgb value(const CompiledTexture& t, Vec2f uv, Vec3f p) const;
   Rgb value(int texture, Vec2f uv, Vec3f p) const { return value(textures_[size_t(texture)], uv, p); }
   // The shading normal bumped by height texture t (n unit, in ng's hemisphere; dpdu/dpdv the surface's derivatives).

@@ -183,9 +183,9 @@ Image box_downsample(const Image& full, int factor) {
 }
 
 // Measured at 320x180 (block median / p95 / MSE): 16 spp 0.209 / 0.778 / 18343, 64 spp 0.124 / 0.539 / 2067,
-// 256 spp 0.072 / 0.420 / 787, 1024 spp 0.044 / 0.380 / 541. The median falls like noise; the p95 does not: the
-// block-ratio map shows the floor's checkerboard out of phase with the reference's (README, "Textures"), so this test
-// does not pass yet. It costs ~20 CPU-minutes per 1000 spp, so it runs only when KILN_VEACH_SPP names the spp.
+// 256 spp 0.072 / 0.420 / 787, 1024 spp 0.044 / 0.380 / 541 with the checkerboard in world space (the p95 held by the
+// floor); in object space 64 spp gives 0.114 / 0.447 (README, "Textures"). It costs ~20 CPU-minutes per 1000 spp, so
+// it runs only when KILN_VEACH_SPP names the spp.
 inline constexpr int kVeachDownsample = 4;
 uint32_t veach_spp() {
   const char* v = std::getenv("KILN_VEACH_SPP");
