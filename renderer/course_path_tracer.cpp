@@ -51,6 +51,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
   PathBranch pending[kMaxSplitBranches];
   int n_pending = 0, n_split = 0, start_depth = 0;
   bool first_branch = true;
+  Material textured;  // the material of the current vertex when it is textured
 
   for (;;) {  // the camera path, then any continuations the Fresnel split left pending
     for (int depth = start_depth;; ++depth) {
@@ -80,6 +81,10 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
       if (si.light >= 0 && (after_specular || !use_nee))
         L += beta * emitted(w.lights[size_t(si.light)], si.ng, wo) * (1.0f + extra);
       if (!si.material) break;
+      if (Rgb unlit; apply_hit_textures(w, si, textured, unlit)) {
+        L += beta * unlit;
+        break;
+      }
       const bool last_vertex = depth >= max_depth || stop;
       if (last_vertex && !use_nee) break;
       const Material& m = *si.material;

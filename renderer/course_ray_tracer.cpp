@@ -60,6 +60,8 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
   Rgb L(0.0f);
   if (si.light >= 0) L += emitted(w.lights[size_t(si.light)], si.ng, wo);
   if (!si.material) return L;
+  Material textured;
+  if (Rgb unlit; apply_hit_textures(w, si, textured, unlit)) return L + unlit;
   const Material& m = *si.material;
   const bool inside_dielectric = exits_dielectric(si, ray.d);
   const Rgb attenuation = inside_dielectric ? m.transmittance(hit.t * length(ray.d)) : Rgb(1.0f);

@@ -19,7 +19,7 @@ enum Feature : uint32_t {
   kFeatureGlossy = 1u << 9,           // Phong / Blinn-Phong / Torrance-Sparrow lobes
   kFeatureDelta = 1u << 10,           // mirror / dielectric / conductor
   kFeatureDielectric = 1u << 11,     // oriented materials (smooth or rough dielectrics): media are tracked
-  kFeatureTextures = 1u << 12,        // parsed but not rendered yet
+  kFeatureTextures = 1u << 12,        // image or procedural textures (SceneTextures built)
   kFeatureDepthOfField = 1u << 13,
   kFeatureInfiniteLights = 1u << 14,  // rays that leave the scene see light
   kFeatureMotionBlur = 1u << 15,      // moving shapes: camera rays take a time sample, accelerators are time-varying

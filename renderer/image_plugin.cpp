@@ -55,7 +55,7 @@ LoadResult load_plugin() {
     using Entry = const ImagePluginApi* (*)();
     const auto entry = reinterpret_cast<Entry>(::dlsym(handle, kImagePluginEntryPoint));
     const ImagePluginApi* api = entry ? entry() : nullptr;
-    if (!api || api->abi_version != kImagePluginAbiVersion || !api->read_rgb)
+    if (!api || api->abi_version != kImagePluginAbiVersion || !api->read_rgb || !api->texture_lookup)
       return {nullptr, file.string() + " is not a plugin of this Kiln version (rebuild it)"};
     return {api, {}};
   }

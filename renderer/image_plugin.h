@@ -10,13 +10,39 @@
 // Where it is looked for, first hit wins: $KILN_PLUGIN_DIR; the running executable's folder; the install layout
 // relative to it (<prefix>/bin/kiln -> <prefix>/<libdir>/kiln/); the build tree it was built in.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace kiln {
 
-inline constexpr int kImagePluginAbiVersion = 1;
+inline constexpr int kImagePluginAbiVersion = 2;
 inline constexpr const char* kImagePluginEntryPoint = "kiln_image_plugin_v1";
+
+// Texture lookups through OpenImageIO's TextureSystem (mip-mapped, tiled, cached; thread-safe). The handles are
+// opaque OpenImageIO objects: a TextureSystem, a TextureHandle per file and a Perthread per thread.
+struct TextureSystemOptions {
+  float max_memory_mb = 128.0f;  // the tile cache's bound ("max_memory_MB")
+  int autotile = 64;             // untiled files (JPEG, PNG) are cached in tiles of this size, not whole
+};
+struct TextureFileInfo {
+  int width = 0, height = 0, channels = 0;
+  float format_max = 1.0f;  // the largest value of the file's pixel type (255 for 8 bit; 1 for float), which
+                            // OpenImageIO maps to 1
+};
+enum class TextureInterp { Closest, Bilinear };
+enum class TextureWrapMode { Periodic, Clamp };
+// One lookup at (s, t): s to the right, t down the image (t = 0 is the top row), both in [0, 1] over the image.
+struct TextureQuery {
+  float s = 0, t = 0;
+  TextureInterp interp = TextureInterp::Bilinear;
+  TextureWrapMode wrap = TextureWrapMode::Periodic;
+};
+struct TextureCacheStats {
+  int64_t memory_used = 0;  // bytes of tiles held now
+  int64_t bytes_read = 0;   // from files, in total
+  int files = 0;
+};
 
 // Function table returned by the plugin's entry point (extern "C" const ImagePluginApi* kiln_image_plugin_v1()).
 // Plugin and Kiln are built together by the same compiler, so C++ standard types may cross the boundary.
@@ -26,6 +52,17 @@ struct ImagePluginApi {
   // Returns false and fills error when it cannot.
   bool (*read_rgb)(const std::string& path, std::vector<float>& rgb, int& width, int& height,
                    std::string& error) = nullptr;
+  // A private TextureSystem (destroyed by texture_system_destroy); null on failure.
+  void* (*texture_system_create)(const TextureSystemOptions& options, std::string& error) = nullptr;
+  void (*texture_system_destroy)(void* system) = nullptr;
+  // Opens (and checks) one file; returns its handle, or null with error filled when it is missing or unreadable.
+  void* (*texture_open)(void* system, const std::string& path, TextureFileInfo& info, std::string& error) = nullptr;
+  // The calling thread's Perthread record (owned by the system).
+  void* (*texture_thread_info)(void* system) = nullptr;
+  // RGB at the query (grey replicated); false when the lookup failed (the result is then black).
+  bool (*texture_lookup)(void* system, void* handle, void* thread_info, const TextureQuery& query,
+                         float rgb[3]) = nullptr;
+  void (*texture_stats)(void* system, TextureCacheStats& stats) = nullptr;
 };
 
 // Loads the plugin on first use (thread-safe) and returns its table. Throws kiln::Error naming `needed_for` (a

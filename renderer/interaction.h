@@ -14,6 +14,10 @@ struct SurfaceInteraction {
   const Material* material = nullptr;
   int light = -1;   // index into World::lights when the surface emits
   uint32_t shape = 0, prim = 0;
+  // Set only on shapes with textures (ShapeData::textures >= 0); untextured hits leave them unset and unread.
+  int textures = -1;  // index into World::textures->bindings
+  Vec2f uv;           // texture coordinates (spec §7-§8: mesh vertices' uv, sphere (theta, phi) mapping)
+  Vec3f dpdu, dpdv;   // world-space derivatives of p along u and v (never both zero: a frame around ng otherwise)
 };
 
 // kMeshesOnly: the scene's feature mask has neither spheres nor instances, so every hit is on a world-space mesh

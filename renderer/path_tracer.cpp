@@ -30,6 +30,7 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
   LightQuery prev{};
   const bool use_nee = s.nee && !w.lights.empty();
   const int max_depth = s.max_depth < 0 ? kMaxPathVertices : std::min(s.max_depth, kMaxPathVertices);
+  Material textured;  // the material of the current vertex when it is textured
 
   for (int depth = 0;; ++depth) {
     Hit hit;
@@ -49,7 +50,12 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
         L += beta * le * emission_weight(s, use_nee, after_specular, prev_pdf, light_pdf);
       }
     }
-    if (!si.material || depth >= max_depth) break;
+    if (!si.material) break;
+    if (Rgb unlit; apply_hit_textures(w, si, textured, unlit)) {
+      L += beta * unlit;
+      break;
+    }
+    if (depth >= max_depth) break;
     const Material& m = *si.material;
     if constexpr (kDielectric) {
       if (exits_dielectric(si, ray.d)) beta *= m.transmittance(hit.t * length(ray.d));

@@ -2,12 +2,21 @@
 #pragma once
 #include "core/frame.h"
 #include "renderer/interaction.h"
+#include "renderer/texture/scene_textures.h"
 
 namespace kiln {
 
 // Beyond this many bounces a path always ends, even under unlimited-depth roulette (a white furnace with
 // albedo 1 would otherwise never terminate).
 inline constexpr int kMaxPathVertices = 1024;
+
+// Textures of the hit (renderer/texture/scene_textures.h): a textured hit shades with `scratch`, its material with
+// the texel's k_d / k_s, and a bent shading normal. Returns true when a replace_all texture gives the surface's
+// colour outright in `unlit`. Untextured hits (every hit of an untextured scene) only test one integer.
+inline bool apply_hit_textures(const World& w, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
+  if (si.textures < 0) return false;
+  return apply_textures(*w.textures, si, scratch, unlit);
+}
 
 inline bool is_dielectric(const Material& m) { return std::holds_alternative<Dielectric>(m.delta); }
 

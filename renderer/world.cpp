@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "renderer/image_io.h"
+#include "renderer/texture/scene_textures.h"
 #include "scenes/material_mapping.h"
 
 namespace kiln {
@@ -102,6 +103,9 @@ AreaLight make_area_light(const AreaLightDesc& d) {
 
 }  // namespace
 
+World::World() = default;
+World::~World() = default;
+
 namespace {
 
 // `consumable`, when given, is `scene` itself: its meshes' arrays are moved into the world (left empty).
@@ -135,6 +139,15 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     return true;
   };
 
+  // Textures: only for scenes that have them; their OpenImageIO TextureSystem only when one is an image.
+  if (!scene.textures.empty()) {
+    w.textures = std::make_unique<SceneTextures>(scene, options.texture_system);
+    w.features |= kFeatureTextures;
+  }
+  const auto bind_textures = [&](const std::vector<int>& textures, int material, const Transform& to_world) {
+    return w.textures && !textures.empty() ? w.textures->bind(scene, textures, material, to_world) : -1;
+  };
+
   WorldGeometry& g = w.geometry;
   // Meshes: world-space copies for the scene, object-space prototypes for instanced bases.
   std::vector<int> prototype_of(scene.meshes.size(), -1);
@@ -149,13 +162,19 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     if (invisible(m.material, m.emission)) continue;
     // Instance bases stay in the description: their prototype copy above was taken from it.
     MeshDesc* take = consumable && !m.is_instance_base ? &consumable->meshes[i] : nullptr;
+    const bool has_uvs = !m.uvs.empty() && m.uvs.size() == m.positions.size();  // before `take` empties m
     TriangleMesh tm = take ? TriangleMesh{take_transformed_points(take->positions, m.to_world),
                                           take_with_spare_capacity(take->indices)}
                            : TriangleMesh{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
     ShapeData sd;
     sd.material = m.material;
     sd.smooth = m.smooth || !m.normals.empty();
-    if (take) take->uvs = {};  // nothing in the world reads texture coordinates (textures are reported unsupported)
+    sd.textures = bind_textures(m.textures, m.material, m.to_world);
+    if (sd.textures >= 0 && has_uvs) {
+      sd.uvs = int(w.uvs.size());
+      w.uvs.push_back(take ? std::exchange(take->uvs, {}) : m.uvs);
+    }
+    if (take) take->uvs = {};  // only textured shapes read texture coordinates
     if (!m.normals.empty()) {
       std::vector<Vec3f> n = take ? std::exchange(take->normals, {}) : m.normals;
       for (Vec3f& v : n) {
@@ -188,6 +207,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     if (invisible(s.material, s.emission)) continue;
     ShapeData sd;
     sd.material = s.material;
+    sd.textures = bind_textures(s.textures, s.material, s.to_world);
     const bool emits = s.emission && !s.emission->is_black();
     if (emits && !(s.radius > 0.0f)) {
       w.warnings.push_back(s.name + ": zero-radius light sphere emits nothing; left out of the lights");
@@ -207,6 +227,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   w.stats.sphere_geometry_built = !g.spheres.empty();
   // Object-space smooth normals for instanced prototypes, shared by all instances of one prototype.
   std::vector<int> prototype_normals(g.prototypes.size(), -2);
+  std::vector<int> prototype_uvs(g.prototypes.size(), -1);
   for (const InstanceDesc& inst : scene.instances) {
     if (inst.base_mesh < 0 || size_t(inst.base_mesh) >= scene.meshes.size() || prototype_of[size_t(inst.base_mesh)] < 0)
       throw Error(scene.source_path, inst.name, "references a mesh that is not an instance base");
@@ -225,6 +246,15 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       }
       sd.normals = pn;
       w.features |= kFeatureSmoothNormals;
+    }
+    sd.textures = bind_textures(inst.textures, sd.material, inst.to_world);
+    if (sd.textures >= 0 && !base.uvs.empty() && base.uvs.size() == base.positions.size()) {
+      int& pu = prototype_uvs[size_t(proto)];
+      if (pu == -1) {
+        pu = int(w.uvs.size());
+        w.uvs.push_back(base.uvs);
+      }
+      sd.uvs = pu;
     }
     g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w, inst.name, inst.motion, -1)});
     g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
@@ -274,8 +304,6 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   }
   for (const CameraDesc& c : scene.cameras)
     if (c.aperture_size > 0.0f) w.features |= kFeatureDepthOfField;
-  for (const std::string& u : scene.unsupported)
-    if (u.rfind("textures", 0) == 0) w.features |= kFeatureTextures;
 
   if (options.build_accelerator) w.accel = make_accelerator(options.accel, g);
   w.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

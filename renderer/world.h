@@ -12,16 +12,21 @@
 #include "materials/material.h"
 #include "renderer/accel/accelerator.h"
 #include "renderer/features.h"
+#include "renderer/image_plugin.h"
 #include "renderer/accel/geometry.h"
 #include "scenes/scene.h"
 
 namespace kiln {
+
+class SceneTextures;
 
 struct ShapeData {
   int material = -1;
   int light = -1;            // index into World::lights when the shape emits
   bool smooth = false;
   int normals = -1;          // index into World::normals (per-vertex, same space as the mesh) or -1
+  int uvs = -1;              // index into World::uvs (per-vertex texture coordinates) or -1
+  int textures = -1;         // index into World::textures->bindings or -1 (no texture: shading reads no uv)
 };
 
 struct WorldStats {
@@ -42,6 +47,8 @@ struct World {
   WorldGeometry geometry;
   std::vector<ShapeData> shape_data;            // parallel to geometry.shapes
   std::vector<std::vector<Vec3f>> normals;      // smooth per-vertex normals
+  std::vector<std::vector<Vec2f>> uvs;          // per-vertex texture coordinates of textured meshes
+  std::unique_ptr<SceneTextures> textures;      // only for scenes with textures (renderer/texture/scene_textures.h)
   std::vector<Material> materials;
   std::vector<Light> lights;
   std::vector<int> infinite_lights;  // indices into lights of what rays that leave the scene see
@@ -54,6 +61,9 @@ struct World {
   std::unique_ptr<Accelerator> accel;
   std::vector<std::string> unsupported;
   std::vector<std::string> warnings;  // found while building (e.g. degenerate lights left out)
+
+  World();
+  ~World();  // out of line: SceneTextures is incomplete here
 };
 
 struct WorldOptions {
@@ -62,6 +72,7 @@ struct WorldOptions {
   bool build_accelerator = true;  // kiln info only needs the description and the feature mask
   EllipsoidPdf ellipsoid_pdf = EllipsoidPdf::Exact;  // the rule set's (renderer/rules.h)
   EnvMapSampling env_map_sampling = EnvMapSampling::ImportanceSampled;  // the rule set's (renderer/rules.h)
+  TextureSystemOptions texture_system;  // OpenImageIO's cache, created only for scenes with image textures
 };
 
 // Throws kiln::Error on inconsistent descriptions (dangling material indices etc.).

@@ -120,6 +120,33 @@ struct MaterialDesc {
 // Each Loop subdivision level multiplies the triangle count by 4; 7 levels of the 8 K killeroo are 136 M triangles.
 inline constexpr int kMaxSubdivisionLevels = 7;
 
+// Textures (CENG795 spec §8; README "Textures"). Image textures are read through OpenImageIO's TextureSystem;
+// Perlin noise and the checkerboard are evaluated at the hit point in the object's own space.
+enum class TextureSource { Image, Perlin, Checkerboard };
+// What a texture does to the surface it is attached to.
+enum class DecalMode { ReplaceKd, BlendKd, ReplaceKs, ReplaceAll, ReplaceNormal, BumpNormal, ReplaceBackground };
+enum class TextureFilter { Nearest, Bilinear };
+enum class TextureWrap { Repeat, Clamp };
+// Perlin noise n in [-1, 1] to a value: Linear (patch) (n + 1) / 2, AbsVal (vein) |n|.
+enum class NoiseConversion { Linear, AbsVal };
+
+struct TextureDesc {
+  std::string name;            // for messages, e.g. "Texture id=3" or "TextureMap id=2"
+  TextureSource source = TextureSource::Image;
+  std::string image_path;      // resolved against the scene file's folder (Image only)
+  TextureFilter filter = TextureFilter::Bilinear;
+  TextureWrap wrap = TextureWrap::Repeat;
+  DecalMode decal = DecalMode::ReplaceKd;
+  std::optional<float> normalizer;  // texel values are divided by it; absent: the image format's maximum (255 for 8 bit)
+  bool degamma = false;        // texel^2.2 after normalising
+  bool bump = false;           // also a height field that perturbs the shading normal (2019 bumpmap="true", bump_normal)
+  float bump_factor = 1.0f;    // bumpmapMultiplier / BumpFactor
+  NoiseConversion noise = NoiseConversion::Linear;
+  float noise_scale = 1.0f;    // Perlin: the point is multiplied by it (ScalingFactor / NoiseScale)
+  float checker_scale = 1.0f, checker_offset = 0.0f;  // Scale (ScalingFactor), Offset
+  Rgb black{0.0f}, white{1.0f};                        // BlackColor, WhiteColor
+};
+
 struct MeshDesc {
   std::string name;     // for messages, e.g. "Mesh id=3"
   std::vector<Vec3f> positions;
@@ -135,6 +162,7 @@ struct MeshDesc {
   bool visible = true;            // false: only a prototype for instances, not itself in the scene
   int subdivide = 0;              // Loop subdivision levels requested for this mesh
   Vec3f motion{0, 0, 0};          // MotionBlur: world-space translation over the shutter interval (at time t: t * motion)
+  std::vector<int> textures;      // indices into SceneDesc::textures
 };
 
 struct SphereDesc {
@@ -145,6 +173,7 @@ struct SphereDesc {
   int material = -1;
   std::optional<Rgb> emission;  // LightSphere radiance
   Vec3f motion{0, 0, 0};        // MotionBlur (see MeshDesc::motion)
+  std::vector<int> textures;    // indices into SceneDesc::textures
 };
 
 struct InstanceDesc {
@@ -154,6 +183,7 @@ struct InstanceDesc {
   int material = -1;
   std::optional<bool> smooth;
   Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
+  std::vector<int> textures;  // indices into SceneDesc::textures; empty: the base mesh's
 };
 
 struct PointLightDesc { Vec3f position; Rgb intensity; };
@@ -206,6 +236,8 @@ struct SceneDesc {
   // Whether triangles facing away from camera rays are skipped (CENG795 BackfaceCulling); unset: the rule set's
   // default (README, "Course conventions").
   std::optional<bool> backface_culling;
+  std::vector<TextureDesc> textures;
+  std::optional<int> background_texture;  // index into textures: what camera rays that miss see (replace_background)
   bool png_gamma_encode = false;  // CS171: the PNG preview applies gamma 2.2 (no tonemap)
   // Features present in the file that the renderer does not render yet (e.g. "textures", "motion blur");
   // reported by `kiln info` and warned about once at render time.

@@ -250,9 +250,14 @@ class XmlLoader {
       scene_.max_recursion_depth = d;
     }
     if (Node n = opt_child(root_, "BackfaceCulling")) scene_.backface_culling = get_bool(n);
-    if (Node n = opt_child(root_, "BackgroundTexture")) {
-      get_string(n);
-      has_background_texture_ = true;
+    if (Node n = opt_child(root_, "BackgroundTexture")) {  // 2019: an image path
+      TextureDesc t;
+      t.name = location(n);
+      t.image_path = resolve(get_string(n));
+      t.decal = DecalMode::ReplaceBackground;
+      t.wrap = TextureWrap::Clamp;
+      scene_.background_texture = int(scene_.textures.size());
+      scene_.textures.push_back(std::move(t));
     }
   }
 
@@ -424,18 +429,10 @@ class XmlLoader {
     }
   }
 
-  // ---- textures (validated, not rendered) -----------------------------------------------------------------------
+  // ---- textures ----------------------------------------------------------------------------------------------
   void read_textures(Node n) {
     warn_unknown_children(n, {"Texture", "Images", "TextureMap"});
-    auto add_id = [&](Node c) {
-      const int id = id_of(c);
-      if (!texture_ids_.insert(id).second) fail(c, "duplicate texture id " + std::to_string(id));
-    };
-    for (Node c : n.children("Texture")) {  // 2019 form
-      add_id(c);
-      get_string(req_child(c, "ImageName"));
-    }
-    for (Node images : n.children("Images")) {  // 2021 form
+    for (Node images : n.children("Images")) {  // 2021 form: images first, texture maps refer to them by id
       warn_unknown_children(images, {"Image"});
       for (Node img : images.children("Image")) {
         const int id = id_of(img);
@@ -443,27 +440,132 @@ class XmlLoader {
           fail(img, "duplicate Image id " + std::to_string(id));
       }
     }
-    for (Node c : n.children("TextureMap")) {
-      add_id(c);
-      if (!attr(c, "type")) fail(c, "missing type attribute");
-      if (Node img = opt_child(c, "ImageId")) {
-        const int id = get_int(img);
-        if (!image_paths_.count(id)) fail(img, "Image " + std::to_string(id) + " is not defined");
-      }
-    }
+    for (Node c : n.children("Texture")) read_texture_2019(c);
+    for (Node c : n.children("TextureMap")) read_texture_map_2021(c);
   }
 
-  void read_texture_refs(Node obj) {
-    bool uses = false;
+  void add_texture(Node c, TextureDesc t) {
+    const int id = id_of(c);
+    if (!texture_index_.emplace(id, int(scene_.textures.size())).second)
+      fail(c, "duplicate texture id " + std::to_string(id));
+    t.name = location(c);
+    if (t.decal == DecalMode::ReplaceBackground) {
+      if (scene_.background_texture) fail(c, "a second replace_background texture");
+      scene_.background_texture = int(scene_.textures.size());
+    }
+    scene_.textures.push_back(std::move(t));
+  }
+
+  template <typename E, size_t N>
+  E keyword(Node n, const std::pair<std::string_view, E> (&table)[N], const char* what) const {
+    const std::string v = get_string(n);
+    std::string choices;
+    for (const auto& [name, value] : table) {
+      if (v == name) return value;
+      choices += (choices.empty() ? "" : ", ") + std::string(name);
+    }
+    fail(n, "unknown " + std::string(what) + " '" + v + "' (expected " + choices + ")");
+  }
+
+  // Children both forms share.
+  void read_common_texture_children(Node c, TextureDesc& t) {
+    static constexpr std::pair<std::string_view, TextureFilter> kFilters[] = {{"nearest", TextureFilter::Nearest},
+                                                                             {"bilinear", TextureFilter::Bilinear}};
+    static constexpr std::pair<std::string_view, DecalMode> kDecals[] = {
+        {"replace_kd", DecalMode::ReplaceKd},         {"blend_kd", DecalMode::BlendKd},
+        {"replace_ks", DecalMode::ReplaceKs},         {"replace_all", DecalMode::ReplaceAll},
+        {"replace_normal", DecalMode::ReplaceNormal}, {"bump_normal", DecalMode::BumpNormal},
+        {"replace_background", DecalMode::ReplaceBackground}};
+    if (Node v = opt_child(c, "Interpolation")) t.filter = keyword(v, kFilters, "Interpolation");
+    if (Node v = opt_child(c, "DecalMode")) t.decal = keyword(v, kDecals, "DecalMode");
+    if (Node v = opt_child(c, "Normalizer")) t.normalizer = positive(v, get_float(v), "Normalizer");
+    t.degamma = bool_attr(c, "degamma", false);
+    for (const char* name : {"Scale", "ScalingFactor"})
+      if (Node v = opt_child(c, name)) {
+        t.checker_scale = positive(v, get_float(v), name);
+        t.noise_scale = t.checker_scale;
+      }
+    if (Node v = opt_child(c, "Offset")) t.checker_offset = get_float(v);
+    if (Node v = opt_child(c, "BlackColor")) t.black = get_rgb(v);
+    if (Node v = opt_child(c, "WhiteColor")) t.white = get_rgb(v);
+    if (Node v = opt_child(c, "NoiseScale")) t.noise_scale = positive(v, get_float(v), "NoiseScale");
+    if (Node v = opt_child(c, "BumpFactor")) t.bump_factor = get_float(v);
+    if (t.decal == DecalMode::BumpNormal) t.bump = true;
+  }
+
+  // 2019: <Texture id [bumpmap] [bumpmapMultiplier] [degamma]> with ImageName (a path or perlin / checkerboard).
+  void read_texture_2019(Node c) {
+    warn_unknown_children(c, {"ImageName", "Interpolation", "DecalMode", "Normalizer", "Appearance", "ScalingFactor",
+                              "Offset", "BlackColor", "WhiteColor", "BumpFactor", "NoiseScale", "Scale"});
+    TextureDesc t;
+    const std::string image = get_string(req_child(c, "ImageName"));
+    t.source = image == "perlin"         ? TextureSource::Perlin
+               : image == "checkerboard" ? TextureSource::Checkerboard
+                                         : TextureSource::Image;
+    if (t.source == TextureSource::Image) t.image_path = resolve(image);
+    read_common_texture_children(c, t);
+    if (Node v = opt_child(c, "Appearance")) {
+      const std::string a = get_string(v);
+      if (t.source == TextureSource::Perlin && (a == "patch" || a == "vein"))
+        t.noise = a == "patch" ? NoiseConversion::Linear : NoiseConversion::AbsVal;
+      else if (t.source == TextureSource::Image && (a == "repeat" || a == "clamp"))
+        t.wrap = a == "repeat" ? TextureWrap::Repeat : TextureWrap::Clamp;
+      else if (t.source != TextureSource::Checkerboard)
+        fail(v, "unknown Appearance '" + a + "' (expected " +
+                    (t.source == TextureSource::Perlin ? "patch or vein" : "repeat or clamp") + ")");
+    }
+    t.bump = bool_attr(c, "bumpmap", false);
+    if (const auto m = attr(c, "bumpmapMultiplier")) t.bump_factor = parse_float(*m, attr_source(c, "bumpmapMultiplier"));
+    add_texture(c, std::move(t));
+  }
+
+  // 2021: <TextureMap id type="image|perlin|checkerboard"> with ImageId into <Images>.
+  void read_texture_map_2021(Node c) {
+    warn_unknown_children(c, {"ImageId", "Interpolation", "DecalMode", "Normalizer", "BumpFactor", "NoiseConversion",
+                              "NoiseScale", "Scale", "Offset", "BlackColor", "WhiteColor", "Appearance"});
+    TextureDesc t;
+    const auto type = attr(c, "type");
+    if (!type) fail(c, "missing type attribute");
+    if (*type == "image") {
+      t.source = TextureSource::Image;
+      Node img = req_child(c, "ImageId");
+      const int id = get_int(img);
+      const auto it = image_paths_.find(id);
+      if (it == image_paths_.end()) fail(img, "Image " + std::to_string(id) + " is not defined");
+      t.image_path = it->second;
+    } else if (*type == "perlin") {
+      t.source = TextureSource::Perlin;
+    } else if (*type == "checkerboard") {
+      t.source = TextureSource::Checkerboard;
+    } else {
+      fail(c, "unknown TextureMap type '" + *type + "' (expected image, perlin or checkerboard)");
+    }
+    read_common_texture_children(c, t);
+    if (Node v = opt_child(c, "NoiseConversion")) {
+      static constexpr std::pair<std::string_view, NoiseConversion> kConv[] = {{"linear", NoiseConversion::Linear},
+                                                                               {"absval", NoiseConversion::AbsVal}};
+      t.noise = keyword(v, kConv, "NoiseConversion");
+    }
+    if (Node v = opt_child(c, "Appearance")) {
+      static constexpr std::pair<std::string_view, TextureWrap> kWraps[] = {{"repeat", TextureWrap::Repeat},
+                                                                           {"clamp", TextureWrap::Clamp}};
+      t.wrap = keyword(v, kWraps, "Appearance");
+    }
+    add_texture(c, std::move(t));
+  }
+
+  std::vector<int> read_texture_refs(Node obj) {
+    std::vector<int> out;
     for (const char* name : {"Texture", "Textures"}) {
       Node n = opt_child(obj, name);
       if (!n) continue;
       for (int64_t id : parse_ints(text_of(n), source(n))) {
-        if (!texture_ids_.count(int(id))) fail(n, "texture " + std::to_string(id) + " is not defined");
-        uses = true;
+        const auto it = texture_index_.find(int(id));
+        if (it == texture_index_.end()) fail(n, "texture " + std::to_string(id) + " is not defined");
+        out.push_back(it->second);
       }
     }
-    if (uses) ++objects_with_textures_;
+    return out;
   }
 
   // ---- cameras -----------------------------------------------------------------------------------------------
@@ -786,7 +888,7 @@ class XmlLoader {
     if (light) m.emission = get_rgb(req_child(c, "Radiance"));
     read_faces(req_child(c, "Faces"), m);
     m.motion = read_motion_blur(c);
-    read_texture_refs(c);
+    m.textures = read_texture_refs(c);
     if (!light) mesh_index_.emplace(id, int(scene_.meshes.size()));  // the first of repeated ids
     scene_.meshes.push_back(std::move(m));
   }
@@ -802,7 +904,7 @@ class XmlLoader {
     if (idx.size() != 3) fail(ind, "expected 3 vertex indices, got " + std::to_string(idx.size()));
     build_indexed(ind, idx, 0, 0, false, m);
     m.motion = read_motion_blur(c);
-    read_texture_refs(c);
+    m.textures = read_texture_refs(c);
     scene_.meshes.push_back(std::move(m));
   }
 
@@ -822,7 +924,7 @@ class XmlLoader {
     s.radius = positive(radius, get_float(radius), "Radius");
     if (light) s.emission = get_rgb(req_child(c, "Radiance"));
     s.motion = read_motion_blur(c);
-    read_texture_refs(c);
+    s.textures = read_texture_refs(c);
     scene_.spheres.push_back(s);
   }
 
@@ -846,7 +948,8 @@ class XmlLoader {
     if (inst.material < 0) inst.material = base.material;
     inst.smooth = shading_mode(c);
     inst.motion = read_motion_blur(c);
-    read_texture_refs(c);
+    inst.textures = read_texture_refs(c);
+    if (inst.textures.empty()) inst.textures = base.textures;
     scene_.instances.push_back(inst);
   }
 
@@ -953,10 +1056,8 @@ class XmlLoader {
 
   // ---- features recorded as unsupported -----------------------------------------------------------------------
   void record_unsupported() {
-    if (!texture_ids_.empty() || objects_with_textures_ > 0)
-      scene_.unsupported.push_back("textures (Textures: " + std::to_string(texture_ids_.size()) + " defined, " +
-                                   std::to_string(objects_with_textures_) + " objects use them)");
-    if (has_background_texture_) scene_.unsupported.push_back("background texture (BackgroundTexture)");
+    // Camera rays that miss would need the pixel position, which the integrators do not see.
+    if (scene_.background_texture) scene_.unsupported.push_back("background texture (BackgroundTexture / replace_background)");
   }
 
   std::string file_;
@@ -974,10 +1075,8 @@ class XmlLoader {
   std::unordered_map<int, int> brdf_index_, material_index_, mesh_index_;
   std::unordered_map<std::string, std::unordered_set<int>> object_ids_;
   std::unordered_set<int> ambiguous_mesh_ids_;
-  std::unordered_set<int> texture_ids_;
+  std::unordered_map<int, int> texture_index_;  // XML id -> index into SceneDesc::textures
   std::unordered_map<int, std::string> image_paths_;
-  int objects_with_textures_ = 0;
-  bool has_background_texture_ = false;
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "renderer/cli/commands.h"
 #include "renderer/integrator.h"
 #include "renderer/world.h"
+#include "renderer/texture/scene_textures.h"
 #include "scenes/loader.h"
 
 namespace kiln {
@@ -81,6 +82,13 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
               (world->features & kFeatureSpheres) ? "yes" : "no", (world->features & kFeatureInstances) ? "yes" : "no",
               (world->features & kFeatureTextures) ? "yes" : "no", ws.cone_sampler_built ? "yes" : "no",
               ws.moving_shapes > 0 ? ("yes (" + std::to_string(ws.moving_shapes) + " moving shapes)").c_str() : "no");
+  if (world->textures) {
+    const TextureBuildStats& t = world->textures->stats();
+    std::printf("textures: %zu (%zu image, %zu procedural) on %zu textured shape bindings; OpenImageIO texture system %s",
+                t.textures, t.images, t.procedural, t.bindings, t.texture_system_built ? "built" : "not built");
+    if (t.texture_system_built) std::printf(" (cache bound %.0f MB)", double(t.cache_limit_mb));
+    std::printf("\n");
+  }
   for (const std::string& w : world->warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& u : s.unsupported) std::printf("not rendered yet: %s\n", u.c_str());

@@ -20,6 +20,7 @@
 #include "renderer/ray_query.h"
 #include "renderer/scene_fingerprint.h"
 #include "renderer/world.h"
+#include "renderer/texture/scene_textures.h"
 #include "scenes/loader.h"
 
 namespace kiln {
@@ -37,9 +38,27 @@ std::string stem_of(const std::string& image_name, const std::string& fallback) 
   return stem.empty() ? fallback : stem;
 }
 
+// What the scene's textures built: nothing without textures; the OpenImageIO cache only with image textures.
+nlohmann::json texture_stats_json(const World& w) {
+  if (!w.textures) return {{"built", false}};
+  const TextureBuildStats& t = w.textures->stats();
+  const TextureCacheStats c = w.textures->cache_stats();
+  return {{"built", true},
+          {"textures", t.textures},
+          {"images", t.images},
+          {"procedural", t.procedural},
+          {"textured_shape_bindings", t.bindings},
+          {"texture_system", t.texture_system_built},
+          {"cache_limit_mb", t.cache_limit_mb},
+          {"cache_memory_bytes", c.memory_used},
+          {"file_bytes_read", c.bytes_read},
+          {"files", c.files}};
+}
+
 nlohmann::json world_stats_json(const World& w) {
   const WorldStats& s = w.stats;
-  return {{"meshes", s.meshes},
+  return {{"textures", texture_stats_json(w)},
+          {"meshes", s.meshes},
           {"triangles", s.triangles},
           {"spheres", s.spheres},
           {"instances", s.instances},

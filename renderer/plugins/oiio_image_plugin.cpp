@@ -1,6 +1,9 @@
 // Kiln's OpenImageIO plugin (renderer/image_plugin.h explains why it is a separately loaded module). Built as
 // kiln_oiio_plugin.so; the only Kiln code that links OpenImageIO.
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/texture.h>
+
+#include <filesystem>
 
 #include "renderer/image_plugin.h"
 
@@ -29,7 +32,111 @@ bool read_rgb(const std::string& path, std::vector<float>& rgb, int& width, int&
   return true;
 }
 
-const ImagePluginApi kApi{kImagePluginAbiVersion, &read_rgb};
+// ---- textures ---------------------------------------------------------------------------------------------------
+
+OIIO::TextureSystem* system_of(void* s) { return static_cast<OIIO::TextureSystem*>(s); }
+
+void* texture_system_create(const TextureSystemOptions& o, std::string& error) {
+  // Private (not the process-wide shared system): each world's cache, its bound and its statistics are its own.
+  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
+  if (!ts) {
+    error = "OpenImageIO could not create a TextureSystem";
+    return nullptr;
+  }
+  ts->attribute("max_memory_MB", o.max_memory_mb);
+  ts->attribute("autotile", o.autotile);
+  ts->attribute("automip", 1);  // files without MIP levels get them built in the cache (trilinear / filtered lookups)
+  return ts;
+}
+
+void texture_system_destroy(void* s) {
+  if (s) OIIO::TextureSystem::destroy(system_of(s), true);
+}
+
+float max_of(OIIO::TypeDesc t) {
+  switch (t.basetype) {
+    case OIIO::TypeDesc::UINT8: return 255.0f;
+    case OIIO::TypeDesc::INT8: return 127.0f;
+    case OIIO::TypeDesc::UINT16: return 65535.0f;
+    case OIIO::TypeDesc::INT16: return 32767.0f;
+    case OIIO::TypeDesc::UINT32: return 4294967295.0f;
+    case OIIO::TypeDesc::INT32: return 2147483647.0f;
+    default: return 1.0f;  // half, float, double: stored as is
+  }
+}
+
+// OpenImageIO may report one problem several times, a line each: Kiln's messages are one line.
+std::string first_line(const std::string& e) {
+  std::string line = e.substr(0, e.find('\n'));
+  while (!line.empty() && (line.back() == ' ' || line.back() == '\r')) line.pop_back();
+  return line;
+}
+
+void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std::string& error) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    error = "no such file";
+    return nullptr;
+  }
+  OIIO::TextureSystem* ts = system_of(s);
+  OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(path));
+  OIIO::ImageSpec spec;
+  if (!h || !ts->get_imagespec(h, nullptr, 0, spec) || !ts->good(h)) {
+    error = first_line(ts->geterror());
+    if (error.empty()) error = "not an image OpenImageIO can read";
+    return nullptr;
+  }
+  info.width = spec.width;
+  info.height = spec.height;
+  info.channels = spec.nchannels;
+  info.format_max = max_of(spec.format);
+  // Reading one texel now finds files whose header is fine but whose pixels are not (truncated data).
+  OIIO::TextureOpt opt;
+  float probe[3];
+  opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+  opt.interpmode = OIIO::TextureOpt::InterpClosest;
+  if (!ts->texture(h, ts->get_perthread_info(), opt, 0.5f, 0.5f, 0, 0, 0, 0, 3, probe)) {
+    error = first_line(ts->geterror());
+    if (error.empty()) error = "its pixels cannot be read";
+    return nullptr;
+  }
+  return h;
+}
+
+void* texture_thread_info(void* s) { return system_of(s)->get_perthread_info(); }
+
+bool texture_lookup(void* s, void* handle, void* thread_info, const TextureQuery& q, float rgb[3]) {
+  OIIO::TextureOpt opt;
+  opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+  opt.interpmode =
+      q.interp == TextureInterp::Closest ? OIIO::TextureOpt::InterpClosest : OIIO::TextureOpt::InterpBilinear;
+  opt.swrap = opt.twrap =
+      q.wrap == TextureWrapMode::Clamp ? OIIO::TextureOpt::WrapClamp : OIIO::TextureOpt::WrapPeriodic;
+  float out[3] = {0, 0, 0};
+  // Channels the file lacks come back as 0 (a grey file is spread to RGB by the caller, which knows its channels).
+  const bool ok = system_of(s)->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(handle),
+                                        static_cast<OIIO::TextureSystem::Perthread*>(thread_info), opt, q.s, q.t, 0,
+                                        0, 0, 0, 3, out);
+  rgb[0] = out[0];
+  rgb[1] = out[1];
+  rgb[2] = out[2];
+  return ok;
+}
+
+void texture_stats(void* s, TextureCacheStats& st) {
+  OIIO::TextureSystem* ts = system_of(s);
+  long long mem = 0, bytes = 0;
+  int files = 0;
+  ts->getattribute("stat:cache_memory_used", OIIO::TypeDesc::INT64, &mem);
+  ts->getattribute("stat:bytes_read", OIIO::TypeDesc::INT64, &bytes);
+  ts->getattribute("stat:unique_files", OIIO::TypeDesc::INT, &files);
+  st.memory_used = mem;
+  st.bytes_read = bytes;
+  st.files = files;
+}
+
+const ImagePluginApi kApi{kImagePluginAbiVersion, &read_rgb,         &texture_system_create, &texture_system_destroy,
+                          &texture_open,          &texture_thread_info, &texture_lookup,       &texture_stats};
 
 }  // namespace
 }  // namespace kiln

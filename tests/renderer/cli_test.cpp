@@ -142,6 +142,35 @@ TEST_F(CliBadInput, PbrtWrongParameterType) {
                    "line 2 (Camera \"perspective\"): parameter \"fov\" is declared \"string\"");
 }
 
+// A scene whose sphere wears texture `ref` of a Textures block with one image texture `image`.
+std::string textured_scene_text(const std::string& image, const std::string& ref = "1") {
+  std::string text = scene_text();
+  text.replace(text.find("  <Objects>"), 0,
+               "  <Textures><Texture id=\"1\"><ImageName>" + image +
+                   "</ImageName><DecalMode>replace_kd</DecalMode></Texture></Textures>\n");
+  text.replace(text.find("<Center>1</Center>"), 0, "<Texture>" + ref + "</Texture>");
+  return text;
+}
+
+TEST_F(CliBadInput, MissingTextureFile) {
+  const std::string path = write_file(dir_, "missing_texture.xml", textured_scene_text("textures/nope.jpg"));
+  expect_bad_input(path, "Texture id=1");
+  expect_bad_input(path, "nope.jpg");
+}
+
+TEST_F(CliBadInput, UnreadableTextureImage) {
+  write_file(dir_, "garbage.jpg", "this is not a JPEG file at all");
+  const std::string path = write_file(dir_, "unreadable_texture.xml", textured_scene_text("garbage.jpg"));
+  expect_bad_input(path, "Texture id=1");
+  expect_bad_input(path, "garbage.jpg");
+}
+
+TEST_F(CliBadInput, UndefinedTextureId) {
+  const std::string path = write_file(dir_, "undefined_texture.xml", textured_scene_text("garbage.jpg", "5"));
+  expect_bad_input(path, "texture 5 is not defined");
+  expect_bad_input(path, "Sphere id=1");
+}
+
 // On a scene that loads and renders, so only the option itself can cause the failure.
 TEST_F(CliBadInput, BadOption) {
   const std::string scene = std::string(KILN_SOURCE_DIR) + "/scenes/default.xml";

@@ -3,6 +3,8 @@
 // (noise-aware: Monte Carlo scenes are rendered at fewer samples than the references, and blocks average the noise).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "render_util.h"
 #include "renderer/image_compare.h"
 #include "renderer/image_io.h"
@@ -280,6 +282,58 @@ INSTANTIATE_TEST_SUITE_P(Course, PathTracingNoiseAware,
                                            PtCase{"glass", "glass_next_russian", true},
                                            PtCase{"glass", "glass_next_importance_russian", true}),
                          [](const auto& tp) { return std::string(tp.param.image); });
+
+// Issue 19: Veach's "Ajar door" (image and checkerboard textures, instances, glass, an area light behind a door gap)
+// against the course's 10 000-spp reference, at a quarter of its resolution: each 320x180 pixel is compared with the
+// mean of its 4x4 block of the reference, so 8x8-pixel blocks here are the issue's 32x32-pixel blocks. The scene's
+// own rules (the course path tracer, NEE + importance sampling). The reference has one overflowed (inf) half pixel;
+// reference pixels that are not finite are left out of their block's mean.
+Image box_downsample(const Image& full, int factor) {
+  Image out(full.width() / factor, full.height() / factor);
+  for (int y = 0; y < out.height(); ++y)
+    for (int x = 0; x < out.width(); ++x) {
+      Rgb sum(0.0f);
+      int n = 0;
+      for (int dy = 0; dy < factor; ++dy)
+        for (int dx = 0; dx < factor; ++dx) {
+          const Rgb c = full.at(x * factor + dx, y * factor + dy);
+          if (!c.is_finite()) continue;
+          sum += c;
+          ++n;
+        }
+      out.at(x, y) = n ? sum / float(n) : Rgb(0.0f);
+    }
+  return out;
+}
+
+// Measured at 320x180 (block median / p95 / MSE): 16 spp 0.209 / 0.778 / 18343, 64 spp 0.124 / 0.539 / 2067,
+// 256 spp 0.072 / 0.420 / 787, 1024 spp 0.044 / 0.380 / 541 with the checkerboard in world space (the p95 held by the
+// floor); in object space 64 spp gives 0.114 / 0.447 / 2476 and 256 spp 0.063 / 0.242 / 433, falling like noise, so
+// the limits need about 1200-1500 spp (README, "Textures"). That costs ~10-20 CPU-minutes, so the test runs only when
+// KILN_VEACH_SPP names the spp.
+inline constexpr int kVeachDownsample = 4;
+uint32_t veach_spp() {
+  const char* v = std::getenv("KILN_VEACH_SPP");
+  return v ? uint32_t(std::strtoul(v, nullptr, 10)) : 0;
+}
+class VeachAjarReference : public ::testing::Test {};
+TEST_F(VeachAjarReference, BlockLuminanceMatchesCourseExr) {
+  REQUIRE_SHARED();
+  const uint32_t spp = veach_spp();
+  if (spp == 0) GTEST_SKIP() << "set KILN_VEACH_SPP (about 1500) to render veach-ajar against its reference";
+  SceneDesc scene = load_scene(course("veach-ajar/scene.xml"));
+  ASSERT_TRUE(scene.unsupported.empty());
+  const Image ref = box_downsample(read_exr(course("veach-ajar/VeachAjar.exr")).rgb, kVeachDownsample);
+  scene.cameras[0].width = ref.width();
+  scene.cameras[0].height = ref.height();
+  const Image mine = render_course_camera(scene, 0, spp);
+  const BlockStats b = block_luminance_stats(mine, ref, 32 / kVeachDownsample);
+  const ErrorStats e = error_stats(mine, ref);
+  std::printf("veach-ajar %dx%d at %u spp: block median %.4f p95 %.4f mean ratio %.4f mse %.4g\n", ref.width(),
+              ref.height(), spp, b.median_rel, b.p95_rel, b.mean_ratio, e.mse);
+  EXPECT_LT(b.median_rel, 0.03);
+  EXPECT_LT(b.p95_rel, 0.12);
+}
 
 }  // namespace
 }  // namespace kiln::test

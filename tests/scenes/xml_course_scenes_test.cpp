@@ -169,8 +169,14 @@ TEST(XmlCourseScenes, VeachAjarHasSeventeenPlyMeshesAndFourInstances) {
   EXPECT_FALSE(s.area_lights[0].radiance_is_intensity);
   EXPECT_NEAR(s.area_lights[0].normal.y, -std::sqrt(0.5f), 1e-6f);
   EXPECT_TRUE(s.point_lights.empty());  // commented out in the file
-  EXPECT_EQ(s.unsupported.size(), 1u);
-  EXPECT_TRUE(has_unsupported(s, "textures (Textures: 4 defined, 4 objects use them)"));
+  EXPECT_TRUE(s.unsupported.empty());
+  ASSERT_EQ(s.textures.size(), 4u);  // three images (clamp, clamp, repeat) and the floor's checkerboard
+  EXPECT_EQ(s.textures[0].wrap, TextureWrap::Clamp);
+  EXPECT_EQ(s.textures[2].wrap, TextureWrap::Repeat);
+  EXPECT_EQ(s.textures[3].source, TextureSource::Checkerboard);
+  EXPECT_EQ(s.textures[3].decal, DecalMode::BlendKd);
+  EXPECT_FLOAT_EQ(s.textures[3].checker_scale, 5.0f);
+  EXPECT_EQ(s.textures[3].white, Rgb(10.0f));
 }
 
 TEST(XmlCourseScenes, DirectLightingUsesVertexOffsetAndLights) {
@@ -259,7 +265,7 @@ TEST(XmlCourseScenes, RegressionSpotChecks) {
     EXPECT_TRUE(s.unsupported.empty());
     EXPECT_EQ(s.spheres.back().motion, Vec3f(4, 4, 4));
   }
-  {  // TexCoordData attached to the textured mesh; textures recorded once
+  {  // TexCoordData attached to the textured mesh; textures read, nothing unsupported
     const SceneDesc s = load("regression/hw4_2019/bump_mapping_transformed.xml");
     ASSERT_EQ(s.meshes.size(), 1u);
     ASSERT_EQ(s.meshes[0].uvs.size(), s.meshes[0].positions.size());
@@ -267,9 +273,11 @@ TEST(XmlCourseScenes, RegressionSpotChecks) {
     EXPECT_EQ(s.meshes[0].positions[0], Vec3f(1000, 0, -1000));
     EXPECT_EQ(s.meshes[0].uvs[0].x, 1.0f);
     EXPECT_EQ(s.meshes[0].uvs[0].y, 0.0f);
-    EXPECT_EQ(std::count_if(s.unsupported.begin(), s.unsupported.end(),
-                            [](const std::string& u) { return u.rfind("textures", 0) == 0; }),
-              1);
+    EXPECT_TRUE(s.unsupported.empty());
+    ASSERT_EQ(s.textures.size(), 2u);
+    EXPECT_TRUE(s.textures[1].bump);
+    EXPECT_FLOAT_EQ(s.textures[1].bump_factor, 30.0f);
+    EXPECT_EQ(s.meshes[0].textures, std::vector<int>{1});
   }
   {  // 2021 TorranceSparrow kdfresnel attribute; 2019 RefractiveIndex child
     const SceneDesc a = load("brdf_2021/brdf_torrancesparrow.xml");

@@ -460,8 +460,17 @@ TEST(XmlLoader, UnsupportedFeaturesAreRecordedOnceEach) {
     <Sphere id="2"><Material>1</Material><Textures>2 3</Textures><Center>1</Center><Radius>1</Radius></Sphere>
   </Objects>)";
   const SceneDesc d = load_text("unsupported.xml", s.str());
-  EXPECT_EQ(d.unsupported, (std::vector<std::string>{"textures (Textures: 3 defined, 3 objects use them)",
-                                                     "background texture (BackgroundTexture)"}));
+  EXPECT_EQ(d.unsupported, (std::vector<std::string>{"background texture (BackgroundTexture / replace_background)"}));
+  // Textures are read: the background image first, then the three <Texture> elements.
+  ASSERT_EQ(d.textures.size(), 4u);
+  EXPECT_EQ(d.background_texture, std::optional<int>(0));
+  EXPECT_TRUE(d.textures[1].bump);
+  EXPECT_FLOAT_EQ(d.textures[1].bump_factor, 3.0f);
+  EXPECT_FLOAT_EQ(*d.textures[1].normalizer, 255.0f);
+  EXPECT_EQ(d.textures[2].source, TextureSource::Checkerboard);
+  EXPECT_EQ(d.textures[3].noise, NoiseConversion::AbsVal);
+  EXPECT_EQ(d.meshes[0].textures, std::vector<int>{1});
+  EXPECT_EQ(d.spheres[1].textures, (std::vector<int>{2, 3}));
   EXPECT_EQ(d.meshes.size(), 1u);
   EXPECT_EQ(d.spheres.size(), 2u);
 }

@@ -1,0 +1,249 @@
+#include "renderer/texture/scene_textures.h"
+
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "core/error.h"
+#include "core/frame.h"
+#include "renderer/interaction.h"
+#include "renderer/texture/checkerboard.h"
+#include "renderer/texture/perlin.h"
+#include "scenes/material_mapping.h"
+
+namespace kiln {
+namespace {
+
+std::atomic<uint64_t> g_next_generation{1};
+
+// The calling thread's OpenImageIO Perthread record of the system it last used.
+struct ThreadTextureInfo {
+  uint64_t generation = 0;
+  void* info = nullptr;
+};
+thread_local ThreadTextureInfo t_info;
+
+// Reflectances of a copied prototype: k_d / k_s of the course BRDFs, a Lambertian's albedo per unit k_d.
+void set_reflectances(Material& m, Rgb kd, Rgb ks, float lambert_scale) {
+  if (auto* l = std::get_if<Lambert>(&m.surface)) {
+    l->reflectance = kd * lambert_scale;
+  } else if (auto* p = std::get_if<Phong>(&m.surface)) {
+    p->kd = kd, p->ks = ks;
+  } else if (auto* b = std::get_if<BlinnPhong>(&m.surface)) {
+    b->kd = kd, b->ks = ks;
+  } else if (auto* t = std::get_if<TorranceSparrow>(&m.surface)) {
+    t->kd = kd, t->ks = ks;
+  }
+}
+
+Rgb degamma(Rgb c) { return pow(c, kDegammaExponent); }
+
+// Unit tangent along dp/du in the plane of n, and the bitangent n x t turned towards dp/dv.
+void tangent_frame(Vec3f n, Vec3f dpdu, Vec3f dpdv, Vec3f& t, Vec3f& b) {
+  t = dpdu - n * dot(dpdu, n);
+  if (length_squared(t) > 0.0f) {
+    t = normalize(t);
+    b = cross(n, t);
+    if (dot(b, dpdv) < 0.0f) b = -b;
+  } else {
+    coordinate_system(n, t, b);
+  }
+}
+
+// Keeps a perturbed normal on the geometric side of n (a bump cannot turn the surface over).
+Vec3f unit_on_side(Vec3f v, Vec3f n) {
+  if (!(length_squared(v) > 0.0f)) return n;
+  v = normalize(v);
+  return dot(v, n) > 0.0f ? v : n;
+}
+
+}  // namespace
+
+SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions& options)
+    : generation_(g_next_generation.fetch_add(1)) {
+  textures_.reserve(scene.textures.size());
+  for (const TextureDesc& d : scene.textures) {
+    CompiledTexture t;
+    t.source = d.source;
+    t.decal = d.decal;
+    t.bump = d.bump;
+    t.bump_factor = d.bump_factor;
+    t.degamma = d.degamma;
+    t.noise = d.noise;
+    t.noise_scale = d.noise_scale;
+    t.checker_scale = d.checker_scale;
+    t.checker_offset = d.checker_offset;
+    t.black = d.black;
+    t.white = d.white;
+    t.normalizer = d.normalizer.value_or(1.0f);
+    if (d.source == TextureSource::Image) {
+      if (!system_) {
+        api_ = &image_plugin(scene.source_path);
+        std::string error;
+        system_ = api_->texture_system_create(options, error);
+        if (!system_) throw Error(scene.source_path, d.name, error);
+        stats_.texture_system_built = true;
+        stats_.cache_limit_mb = options.max_memory_mb;
+      }
+      TextureFileInfo info;
+      std::string error;
+      t.handle = api_->texture_open(system_, d.image_path, info, error);
+      if (!t.handle) throw Error(scene.source_path, d.name, "image '" + d.image_path + "': " + error);
+      t.query.interp = d.filter == TextureFilter::Nearest ? TextureInterp::Closest : TextureInterp::Bilinear;
+      t.query.wrap = d.wrap == TextureWrap::Clamp ? TextureWrapMode::Clamp : TextureWrapMode::Periodic;
+      t.value_scale = info.format_max / d.normalizer.value_or(info.format_max);
+      t.grey = info.channels < 3;
+      t.width = std::max(info.width, 1);
+      t.height = std::max(info.height, 1);
+      ++stats_.images;
+    } else {
+      ++stats_.procedural;
+    }
+    textures_.push_back(t);
+  }
+  stats_.textures = textures_.size();
+  if (scene.background_texture) background_ = *scene.background_texture;
+  material_of_desc_.assign(scene.materials.size() * 4, -1);
+}
+
+SceneTextures::~SceneTextures() {
+  if (system_) api_->texture_system_destroy(system_);
+}
+
+int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures, int material,
+                        const Transform& to_world) {
+  TextureBinding b;
+  b.to_object = to_world.inverse();
+  bool any = false;
+  for (const int i : textures) {
+    const CompiledTexture& t = textures_[size_t(i)];
+    switch (t.decal) {
+      case DecalMode::ReplaceKd: b.kd = i, b.blend_kd = false, any = true; break;
+      case DecalMode::BlendKd: b.kd = i, b.blend_kd = true, any = true; break;
+      case DecalMode::ReplaceKs: b.ks = i, any = true; break;
+      case DecalMode::ReplaceAll: b.all = i, any = true; break;
+      case DecalMode::ReplaceNormal: b.normal = i, any = true; break;
+      case DecalMode::BumpNormal: break;  // a pure height field: bump below
+      case DecalMode::ReplaceBackground: break;
+    }
+    if (t.bump) b.bump = i, any = true;
+  }
+  if (!any) return -1;
+  if ((b.kd >= 0 || b.ks >= 0) && material >= 0 && !scene.materials[size_t(material)].pbrt) {
+    const int roles = (b.kd >= 0 ? 1 : 0) | (b.ks >= 0 ? 2 : 0);
+    int& slot = material_of_desc_[size_t(material) * 4 + size_t(roles)];
+    if (slot < 0) {
+      // Placeholder reflectances keep the lobes a texture sets from being left out as black.
+      MaterialDesc desc = scene.materials[size_t(material)];
+      const Rgb own_kd = desc.degamma ? degamma(desc.diffuse) : desc.diffuse;
+      const Rgb own_ks = desc.degamma ? degamma(desc.specular) : desc.specular;
+      if (roles & 1) desc.diffuse = Rgb(1.0f);
+      if (roles & 2) desc.specular = Rgb(1.0f);
+      TexturableMaterial tm;
+      tm.prototype = build_material(desc, scene);
+      tm.kd = own_kd;
+      tm.ks = own_ks;
+      if (const auto* l = std::get_if<Lambert>(&tm.prototype.surface))
+        tm.lambert_scale = (roles & 1) ? l->reflectance.r : (own_kd.r > 0.0f ? l->reflectance.r / own_kd.r : 1.0f);
+      slot = int(materials_.size());
+      materials_.push_back(std::move(tm));
+    }
+    b.material = slot;
+  }
+  bindings_.push_back(b);
+  stats_.bindings = bindings_.size();
+  return int(bindings_.size()) - 1;
+}
+
+Rgb SceneTextures::image_value(const CompiledTexture& t, Vec2f uv) const {
+  if (t_info.generation != generation_) t_info = {generation_, api_->texture_thread_info(system_)};
+  TextureQuery q = t.query;
+  q.s = uv.x;
+  q.t = uv.y;
+  float rgb[3];
+  api_->texture_lookup(system_, t.handle, t_info.info, q, rgb);
+  if (t.grey) rgb[1] = rgb[2] = rgb[0];
+  return Rgb(rgb[0], rgb[1], rgb[2]) * t.value_scale;
+}
+
+Rgb SceneTextures::value(const CompiledTexture& t, Vec2f uv, Vec3f p) const {
+  Rgb c(0.0f);
+  switch (t.source) {
+    case TextureSource::Image: c = image_value(t, uv); break;
+    case TextureSource::Perlin: {
+      const float n = course_perlin(p * t.noise_scale);
+      c = Rgb(t.noise == NoiseConversion::Linear ? 0.5f * (n + 1.0f) : std::fabs(n)) / t.normalizer;
+      break;
+    }
+    case TextureSource::Checkerboard:
+      c = (checkerboard_is_white(p, t.checker_offset, t.checker_scale) ? t.white : t.black) / t.normalizer;
+      break;
+  }
+  return t.degamma ? degamma(c) : c;
+}
+
+float SceneTextures::height(const CompiledTexture& t, Vec2f uv, Vec3f p) const {
+  const Rgb c = value(t, uv, p);
+  return (c.r + c.g + c.b) / 3.0f;
+}
+
+Vec3f SceneTextures::bumped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, Vec3f p, Vec3f dpdu,
+                                   Vec3f dpdv) const {
+  if (t.source == TextureSource::Perlin) {
+    // h = (n + 1) / 2 or |n| of the noise at scale * p: the surface moves along the normal by bump_factor * h, and
+    // the normal tilts against the tangential part of grad h.
+    const Vec3f q = p * t.noise_scale;
+    const float dh_dn = t.noise == NoiseConversion::Linear ? 0.5f : (course_perlin(q) < 0.0f ? -1.0f : 1.0f);
+    const Vec3f g = course_perlin_gradient(q) * (dh_dn * t.noise_scale / t.normalizer);
+    return unit_on_side(n - (g - n * dot(g, n)) * t.bump_factor, n);
+  }
+  // Images (and the checkerboard, whose height is flat but for its edges): central differences one texel apart,
+  // i.e. the height change per texel along u and v, tilting the normal against the tangent and bitangent.
+  Vec3f tu, tv;
+  tangent_frame(n, dpdu, dpdv, tu, tv);
+  const float du = 1.0f / float(t.width), dv = 1.0f / float(t.height);
+  const float gu = 0.5f * (height(t, {uv.x + du, uv.y}, p) - height(t, {uv.x - du, uv.y}, p));
+  const float gv = 0.5f * (height(t, {uv.x, uv.y + dv}, p) - height(t, {uv.x, uv.y - dv}, p));
+  return unit_on_side(n - (tu * gu + tv * gv) * t.bump_factor, n);
+}
+
+Vec3f SceneTextures::mapped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, Vec3f p, Vec3f dpdu) const {
+  // Texel c in [0, 1] encodes the tangent-space normal 2c - 1: x along dp/du, y along n x dp/du, z along n.
+  const Rgb c = value(t, uv, p);
+  Vec3f tu, tv;
+  tangent_frame(n, dpdu, cross(n, dpdu), tu, tv);
+  return unit_on_side(tu * (2.0f * c.r - 1.0f) + tv * (2.0f * c.g - 1.0f) + n * (2.0f * c.b - 1.0f), n);
+}
+
+TextureCacheStats SceneTextures::cache_stats() const {
+  TextureCacheStats s;
+  if (system_) api_->texture_stats(system_, s);
+  return s;
+}
+
+bool apply_textures(const SceneTextures& tex, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
+  const TextureBinding& b = tex.bindings()[size_t(si.textures)];
+  const Vec3f p = b.to_object.point(si.p);  // where procedural textures are evaluated
+  if (b.all >= 0) {
+    unlit = tex.value(b.all, si.uv, p);
+    return true;
+  }
+  if (b.normal >= 0) si.ns = tex.mapped_normal(tex.textures()[size_t(b.normal)], si.ns, si.uv, p, si.dpdu);
+  if (b.bump >= 0) si.ns = tex.bumped_normal(tex.textures()[size_t(b.bump)], si.ns, si.uv, p, si.dpdu, si.dpdv);
+  if (b.material >= 0 && si.material) {
+    const TexturableMaterial& tm = tex.materials()[size_t(b.material)];
+    scratch = tm.prototype;
+    Rgb kd = tm.kd, ks = tm.ks;
+    if (b.kd >= 0) {
+      const Rgb texel = tex.value(b.kd, si.uv, p);
+      kd = b.blend_kd ? (kd + texel) * 0.5f : texel;
+    }
+    if (b.ks >= 0) ks = tex.value(b.ks, si.uv, p);
+    set_reflectances(scratch, kd, ks, tm.lambert_scale);
+    si.material = &scratch;
+  }
+  return false;
+}
+
+}  // namespace kiln

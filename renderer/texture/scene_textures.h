@@ -1,0 +1,117 @@
+// The textures of one scene, compiled for shading (CENG795 spec §8; README "Textures"). Built only for scenes with
+// textures; the OpenImageIO TextureSystem (through the plugin, renderer/image_plugin.h) only when one of them is an
+// image.
+//
+// Per hit, a shape's binding says what its textures do: replace or blend k_d, replace k_s, replace the whole
+// shading (replace_all), bump (height (R+G+B)/3 of an image, or Perlin noise) or replace the shading normal
+// (normal map, tangent space from dp/du, dp/dv). Materials are shared between shapes, so a textured hit shades with
+// a copy of its material's texturable prototype that carries the texel's k_d / k_s (no allocation: Material is a
+// value type).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/transform.h"
+#include "materials/material.h"
+#include "renderer/image_plugin.h"
+#include "scenes/scene.h"
+
+namespace kiln {
+
+struct SurfaceInteraction;
+
+struct CompiledTexture {
+  TextureSource source = TextureSource::Image;
+  DecalMode decal = DecalMode::ReplaceKd;
+  bool bump = false;
+  float bump_factor = 1.0f;
+  bool degamma = false;
+  // Image
+  void* handle = nullptr;
+  TextureQuery query;          // interp and wrap; s, t filled per lookup
+  float value_scale = 1.0f;    // format_max / Normalizer: OpenImageIO's [0, 1] back to the file's values, normalised
+  bool grey = false;
+  int width = 1, height = 1;
+  // Perlin
+  NoiseConversion noise = NoiseConversion::Linear;
+  float noise_scale = 1.0f;
+  // Checkerboard
+  float checker_scale = 1.0f, checker_offset = 0.0f;
+  Rgb black{0.0f}, white{1.0f};
+  float normalizer = 1.0f;     // procedural textures: colours are divided by it
+};
+
+// What the textures of one shape do; -1: nothing of that kind. A later texture of the same kind wins.
+struct TextureBinding {
+  int kd = -1, ks = -1, all = -1, normal = -1, bump = -1;
+  bool blend_kd = false;
+  int material = -1;  // index into SceneTextures::materials (the texturable prototype) or -1: no k_d / k_s texture
+  // Procedural textures are evaluated in the object's own space (the course's: veach-ajar's floor, scaled 1.8x along
+  // x by its transformation, has squares 1.8x wider along x in its reference).
+  Transform to_object;
+};
+
+// A material whose k_d / k_s a texture sets: built once with placeholder reflectances so that no lobe a texture
+// needs is left out, then copied per hit.
+struct TexturableMaterial {
+  Material prototype;
+  Rgb kd{0.0f}, ks{0.0f};      // the material's own (linear) values: blend_kd mixes the texel with kd
+  float lambert_scale = 1.0f;  // a Lambert surface's reflectance per unit k_d (pi for the course's un-normalised forms)
+};
+
+struct TextureBuildStats {
+  size_t textures = 0, images = 0, procedural = 0, bindings = 0;
+  bool texture_system_built = false;
+  float cache_limit_mb = 0.0f;
+};
+
+class SceneTextures {
+ public:
+  // Throws kiln::Error naming the scene file and the Texture element when an image is missing or unreadable.
+  SceneTextures(const SceneDesc& scene, const TextureSystemOptions& options);
+  ~SceneTextures();
+  SceneTextures(const SceneTextures&) = delete;
+  SceneTextures& operator=(const SceneTextures&) = delete;
+
+  // A binding for a shape with these textures (indices into SceneDesc::textures) and material; -1 when they do nothing
+  // to a surface (e.g. only a background texture).
+  int bind(const SceneDesc& scene, const std::vector<int>& textures, int material, const Transform& to_world);
+
+  // Texture value at a hit (colour, normalised, degamma applied); p in the object's own space.
+  Rgb value(const CompiledTexture& t, Vec2f uv, Vec3f p) const;
+  Rgb value(int texture, Vec2f uv, Vec3f p) const { return value(textures_[size_t(texture)], uv, p); }
+  // The shading normal bumped by height texture t (n unit, in ng's hemisphere; dpdu/dpdv the surface's derivatives).
+  Vec3f bumped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, Vec3f p, Vec3f dpdu, Vec3f dpdv) const;
+  // The normal a tangent-space normal map gives.
+  Vec3f mapped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, Vec3f p, Vec3f dpdu) const;
+
+  const std::vector<CompiledTexture>& textures() const { return textures_; }
+  const std::vector<TextureBinding>& bindings() const { return bindings_; }
+  const std::vector<TexturableMaterial>& materials() const { return materials_; }
+  int background() const { return background_; }
+  const TextureBuildStats& stats() const { return stats_; }
+  TextureCacheStats cache_stats() const;
+
+ private:
+  Rgb image_value(const CompiledTexture& t, Vec2f uv) const;
+  float height(const CompiledTexture& t, Vec2f uv, Vec3f p) const;
+
+  std::vector<CompiledTexture> textures_;
+  std::vector<TextureBinding> bindings_;
+  std::vector<TexturableMaterial> materials_;
+  std::vector<int> material_of_desc_;  // SceneDesc material -> materials_ index (built on first use)
+  int background_ = -1;
+  const ImagePluginApi* api_ = nullptr;
+  void* system_ = nullptr;
+  uint64_t generation_ = 0;  // tells this system's per-thread records from a destroyed one's at the same address
+  TextureBuildStats stats_;
+};
+
+// Shading at a textured hit: sets si.material to `scratch` (the material with the texel's k_d / k_s) and bends
+// si.ns by bump or normal maps. Returns true when a replace_all texture gives the surface's colour outright
+// (`unlit`), without shading.
+bool apply_textures(const SceneTextures& textures, SurfaceInteraction& si, Material& scratch, Rgb& unlit);
+
+}  // namespace kiln
