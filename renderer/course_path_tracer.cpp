@@ -116,7 +116,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
             const Rgb bb = beta * branches[i].weight;
             if (!consistent_sides(si, wo, wb, wo_l, *wb_l) || bb.is_black() || !bb.is_finite()) continue;
             const float es = branches[i].transmission ? eta_scale * sqr(branches[i].etap) : eta_scale;
-            pending[n_pending++] = PathBranch{spawn_ray(si.p, si.ng, wb, ray.time), bb, potential, es, depth + 1};
+            pending[n_pending++] = PathBranch{spawn_ray(si.p, si.ng, wb, ray.time, si.extent), bb, potential, es, depth + 1};
             ++n_split;
           }
         }
@@ -142,7 +142,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
         if (sampler.next_float() >= survive) break;
         beta *= 1.0f / survive;
       }
-      ray = spawn_ray(si.p, si.ng, wi, ray.time);
+      ray = spawn_ray(si.p, si.ng, wi, ray.time, si.extent);
     }
     if (n_pending == 0) break;
     const PathBranch& b = pending[--n_pending];

@@ -16,13 +16,13 @@ namespace {
 // A ray leaving si towards wi: the course's fixed offset along the normal, or Kiln's robust one.
 // time: the path's instant (the camera ray's).
 Ray spawn_course_ray(const SurfaceInteraction& si, Vec3f wi, float epsilon, float time) {
-  if (!(epsilon > 0.0f)) return spawn_ray(si.p, si.ng, wi, time);
+  if (!(epsilon > 0.0f)) return spawn_ray(si.p, si.ng, wi, time, si.extent);
   const Vec3f n = dot(si.ng, wi) < 0.0f ? -si.ng : si.ng;
   return Ray{si.p + n * epsilon, wi, 0.0f, kInfinity, time};
 }
 
 Ray spawn_course_shadow_ray(const SurfaceInteraction& si, Vec3f target, float epsilon, float time) {
-  if (!(epsilon > 0.0f)) return spawn_ray_to(si.p, si.ng, target, time);
+  if (!(epsilon > 0.0f)) return spawn_ray_to(si.p, si.ng, target, time, si.extent);
   const Vec3f n = dot(si.ng, target - si.p) < 0.0f ? -si.ng : si.ng;
   const Vec3f o = si.p + n * epsilon;
   return Ray{o, target - o, 0.0f, kShadowRayEndFraction, time};

@@ -107,6 +107,7 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   SurfaceInteraction si;
   si.p = sp.p;
   si.ng = sp.ng;
+  si.extent = sp.extent;
   si.ns = sp.ng;
   si.t = hit.t;
   si.shape = hit.shape;

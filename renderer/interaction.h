@@ -11,6 +11,7 @@ struct SurfaceInteraction {
   Vec3f ng;         // unit geometric normal; triangles: (v1-v0)x(v2-v0) after transformation, spheres: outward
   Vec3f ns;         // unit shading normal, in the same hemisphere as ng
   float t = 0;
+  float extent = 0;  // offset_ray_origin's extent (renderer/accel/surface_point.h)
   const Material* material = nullptr;
   int light = -1;   // index into World::lights when the surface emits
   uint32_t shape = 0, prim = 0;

@@ -96,7 +96,7 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
       if (sampler.next_float() >= survive) break;
       beta *= 1.0f / survive;
     }
-    ray = spawn_ray(si.p, si.ng, wi, ray.time);
+    ray = spawn_ray(si.p, si.ng, wi, ray.time, si.extent);
   }
   return L;
 }

@@ -114,7 +114,7 @@ inline std::optional<DirectLight> sample_direct_light(const World& w, const Surf
   const Vec3f wi_l = frame.to_local(ls->wi);
   if (!consistent_sides(si, wo, ls->wi, wo_l, wi_l)) return std::nullopt;
   const Rgb f = si.material->eval(wo_l, wi_l);
-  if (f.is_black() || query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light, time), c)) return std::nullopt;
+  if (f.is_black() || query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light, time, si.extent), c)) return std::nullopt;
   const float light_pdf = ls->pdf * pmf;
   return DirectLight{f * ls->li * (abs_cos_theta(wi_l) / light_pdf), light_pdf, wi_l, ls->delta};
 }

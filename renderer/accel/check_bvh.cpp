@@ -191,10 +191,11 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
     const float len = length(ea.ng);
     if (!(len > 0.0f) || !std::isfinite(len)) return;  // degenerate triangle: no direction to leave in
     const Vec3f ng = ea.ng / len;
-    const Vec3f p = surface_point(geometry, cam, ea).p;
+    const SurfacePoint sp = surface_point(geometry, cam, ea);
+    const Vec3f p = sp.p;
 
     const Frame frame(face_forward(ng, -cam.d));
-    const Ray bounce = spawn_ray(p, ng, frame.to_world(sample_cosine_hemisphere(rng.next_2d())), cam.time);
+    const Ray bounce = spawn_ray(p, ng, frame.to_world(sample_cosine_hemisphere(rng.next_2d())), cam.time, sp.extent);
     Hit eb, bb;
     const bool he2 = embree.intersect(bounce, eb), hb2 = bvh.intersect(bounce, bb);
     out.bounce = compare(geometry, bounce, he2, eb, hb2, bb);
@@ -203,7 +204,7 @@ CheckBvhReport check_bvh(const WorldGeometry& geometry, const Accelerator& embre
 
     const Vec3f u(rng.next_float(), rng.next_float(), rng.next_float());
     const Vec3f target = scene.lo + scene.diagonal() * u;
-    const Ray shadow = spawn_ray_to(p, ng, target, cam.time);
+    const Ray shadow = spawn_ray_to(p, ng, target, cam.time, sp.extent);
     const bool oe = embree.occluded(shadow), ob = bvh.occluded(shadow);
     out.shadow = compare_occlusion(geometry, shadow, embree, bvh, oe, ob);
     if (oe != ob && notes[i].empty()) {

@@ -1,5 +1,8 @@
 #include "renderer/accel/surface_point.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "renderer/accel/object_ray.h"
 
 namespace kiln {
@@ -8,6 +11,18 @@ namespace {
 Vec3f unit_or_z(Vec3f n) {
   const float len = length(n);
   return len > 0.0f ? n / len : Vec3f(0, 0, 1);
+}
+
+// A bound on the magnitudes summed when M maps p to world space: |translation| + max|linear entry| * |p|, per the
+// largest components. The world point's rounding error, and the object-space ray's, are ulps of this.
+float transformed_extent(const Transform& xf, Vec3f p) {
+  const auto& m = xf.matrix().m;
+  float linear = 0.0f, translation = 0.0f;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) linear = std::max(linear, std::abs(m[r][c]));
+    translation = std::max(translation, std::abs(m[r][3]));
+  }
+  return translation + 3.0f * linear * max_component(abs(p));
 }
 
 // Barycentric position from the triangle's own vertices: far more precise than ray.o + t * ray.d far from the
@@ -24,7 +39,8 @@ SurfacePoint on_sphere(const SphereShape& s, const Ray& ray, float t) {
   const float len = length(rel);
   const Vec3f dir = len > 0.0f ? rel / len : Vec3f(0, 0, 1);
   const Vec3f p = s.center + dir * s.radius;
-  return xf ? SurfacePoint{s.to_world.point(p), unit_or_z(s.to_world.normal(dir))} : SurfacePoint{p, dir};
+  return xf ? SurfacePoint{s.to_world.point(p), unit_or_z(s.to_world.normal(dir)), transformed_extent(s.to_world, p)}
+            : SurfacePoint{p, dir};
 }
 
 // The shape as it is at time 0, hit by `ray`.
@@ -38,8 +54,9 @@ SurfacePoint static_surface_point(const WorldGeometry& g, const Shape& s, ShapeK
     }
     case ShapeKind::Instance: {
       const MeshInstance& inst = g.instances[s.index];
-      return {inst.to_world.point(barycentric_point(g.prototypes[inst.prototype], hit)),
-              unit_or_z(triangle_world_normal(g, hit.shape, hit.prim))};
+      const Vec3f p_object = barycentric_point(g.prototypes[inst.prototype], hit);
+      return {inst.to_world.point(p_object), unit_or_z(triangle_world_normal(g, hit.shape, hit.prim)),
+              transformed_extent(inst.to_world, p_object)};
     }
     case ShapeKind::Sphere: return on_sphere(g.spheres[s.index], ray, hit.t);
   }

@@ -10,6 +10,9 @@ namespace kiln {
 struct SurfacePoint {
   Vec3f p;   // world space
   Vec3f ng;  // unit geometric normal: (v1-v0)x(v2-v0) of the world triangle, outward for spheres
+  // Magnitude whose ulps bound p's error when it exceeds p's own (offset_ray_origin's extent): for instance hits the
+  // transform's translation plus its scaled object-space point, since the accelerator intersects in object space.
+  float extent = 0.0f;
 };
 
 // kMeshesOnly: every shape is a static world-space mesh (no spheres, no instances, no motion), so the shape dispatch

@@ -120,7 +120,8 @@ TEST_P(Reintersection, SpawnedRaysDoNotHitTheirOwnSurface) {
       for (int j = 0; j < kSpawnedPerHit; ++j) {
         const Vec3f dir = random_unit(rng);
         // Alternate between a continuation ray and a shadow ray to a point 10 sizes away.
-        const Ray r = (j % 2 == 0) ? spawn_ray(si.p, si.ng, dir) : spawn_ray_to(si.p, si.ng, si.p + dir * (10.0f * size));
+        const Ray r = (j % 2 == 0) ? spawn_ray(si.p, si.ng, dir, 0.0f, si.extent)
+                                    : spawn_ray_to(si.p, si.ng, si.p + dir * (10.0f * size), 0.0f, si.extent);
         Hit h2;
         ++spawned;
         if (!w->accel->intersect(r, h2) || h2.shape != h.shape) continue;
@@ -142,6 +143,55 @@ TEST_P(Reintersection, SpawnedRaysDoNotHitTheirOwnSurface) {
     }
   }
   EXPECT_GT(spawned, size_t(kScales * kPrimaryRays * kSpawnedPerHit) / 2);  // most primaries hit
+  EXPECT_EQ(self_hits, 0u) << "of " << spawned << " spawned rays; first: " << first;
+}
+
+// An instance whose object-space geometry lies far from its own origin, moved back near the world origin: the
+// prototype's plane at z = -T/2, placed by translate(0, 0, T) * scale(1, 1, 2) at world z = 0. The hit point is
+// tiny, but the accelerator intersects in object space through a translation of T, so the spawn offset must be
+// ulps of T (SurfacePoint::extent), not of the hit point; sized by the point alone, most shadow rays hit the plane
+// they leave.
+TEST_P(Reintersection, InstanceFarFromItsOwnOriginDoesNotShadowItself) {
+  Rng rng(78, 1);
+  size_t spawned = 0, self_hits = 0;
+  std::string first;
+  for (const float translation : {20.0f, 1e3f, 1e5f}) {
+    for (const float size : {1e-3f, 1e-1f, 1.0f}) {
+      SceneDesc s = scene_at(1.0f, 1.0f, rng);
+      s.meshes.resize(1);
+      s.meshes[0].positions = {{-size, -size, -0.5f * translation}, {size, -size, -0.5f * translation},
+                               {size, size, -0.5f * translation}, {-size, size, -0.5f * translation}};
+      s.meshes[0].indices = {0, 1, 2, 0, 2, 3};
+      s.meshes[0].is_instance_base = true;
+      s.meshes[0].visible = false;
+      s.spheres.clear();
+      s.instances.resize(1);
+      s.instances[0].base_mesh = 0;
+      s.instances[0].to_world = Transform::translate(Vec3f(0, 0, translation)) * Transform::scale(Vec3f(1, 1, 2));
+      const auto w = build_world(s, world_options());
+      for (int i = 0; i < kPrimaryRays; ++i) {
+        const Vec3f target((2.0f * rng.next_float() - 1.0f) * size, (2.0f * rng.next_float() - 1.0f) * size, 0.0f);
+        const Ray primary{target + Vec3f(0.3f, 0.2f, 1.0f) * size, Vec3f(-0.3f, -0.2f, -1.0f) * size};
+        Hit h;
+        if (!w->accel->intersect(primary, h)) continue;
+        const SurfaceInteraction si = make_interaction(*w, primary, h);
+        for (int j = 0; j < kSpawnedPerHit; ++j) {
+          const Vec3f dir = random_unit(rng);
+          const Ray r = (j % 2 == 0) ? spawn_ray(si.p, si.ng, dir, 0.0f, si.extent)
+                                     : spawn_ray_to(si.p, si.ng, si.p + dir * (10.0f * size), 0.0f, si.extent);
+          Hit h2;
+          ++spawned;
+          if (w->accel->intersect(r, h2)) {  // the plane is the only shape: any hit is a self-hit
+            ++self_hits;
+            if (first.empty())
+              first = "translation " + std::to_string(translation) + " size " + std::to_string(size) + " t " +
+                      std::to_string(h2.t) + (j % 2 ? " (shadow ray)" : "");
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(spawned, size_t(9 * kPrimaryRays * kSpawnedPerHit) / 2);
   EXPECT_EQ(self_hits, 0u) << "of " << spawned << " spawned rays; first: " << first;
 }
 
