@@ -40,15 +40,7 @@ Image sky_map() {
 
 // A Lambertian ball of albedo kAlbedo under the map, filling the view.
 SceneDesc ball_under(const std::string& map) {
-  SceneDesc s;
-  s.source_path = "env.test";
-  BrdfDesc lambert;
-  lambert.kind = BrdfKind::Lambert;
-  s.brdfs.push_back(lambert);
-  MaterialDesc m;
-  m.brdf = 0;
-  m.diffuse = Rgb(kAlbedo);
-  s.materials.push_back(m);
+  SceneDesc s = lambertian_scene(kAlbedo, "env.test");
   SphereDesc ball;
   ball.name = "ball";
   ball.radius = 1.0f;

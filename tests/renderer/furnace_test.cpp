@@ -163,15 +163,7 @@ TEST(Furnace, ZeroSpecularCourseMaterialsKeepTheirAlbedo) {
 TEST(Furnace, ConvexSphereUnderAConstantInfiniteLight) {
   constexpr float kAlbedo = 0.6f;
   const Rgb sky(0.5f, 1.0f, 2.0f);
-  SceneDesc s;
-  s.source_path = "sky.test";
-  BrdfDesc lambert;
-  lambert.kind = BrdfKind::Lambert;
-  s.brdfs.push_back(lambert);
-  MaterialDesc m;
-  m.brdf = 0;
-  m.diffuse = Rgb(kAlbedo);
-  s.materials.push_back(m);
+  SceneDesc s = lambertian_scene(kAlbedo, "sky.test");
   SphereDesc ball;
   ball.name = "ball";
   ball.radius = 1.0f;

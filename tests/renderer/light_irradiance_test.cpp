@@ -21,15 +21,7 @@ constexpr double kMaxZ = 5.0;
 
 // A large Lambertian floor (y = 0, normal +y) seen at the origin by a narrow camera from the side.
 SceneDesc lit_floor() {
-  SceneDesc s;
-  s.format = "test";
-  BrdfDesc lambert;
-  lambert.kind = BrdfKind::Lambert;
-  s.brdfs.push_back(lambert);
-  MaterialDesc m;
-  m.brdf = 0;
-  m.diffuse = Rgb(kAlbedo);
-  s.materials.push_back(m);
+  SceneDesc s = lambertian_scene(kAlbedo);
   MeshDesc floor;
   floor.name = "floor";
   floor.positions = {{-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}};

@@ -27,11 +27,11 @@ inline std::string tmp_dir(const std::string& sub) {
   return d;
 }
 
-// A closed cube [-1,1]^3 whose faces are one LightMesh emitting Le inward, with a Lambertian interior of albedo a.
-// Seen from inside, every strategy must give Le * sum_{k=0..D} a^k (D bounces), i.e. Le / (1 - a) unbounded.
-inline SceneDesc furnace_box(float albedo, Rgb le) {
+// A scene with one material, material 0: a Lambertian of the given albedo (shapes, lights and cameras to be added).
+inline SceneDesc lambertian_scene(float albedo, const std::string& source_path = "") {
   SceneDesc s;
   s.format = "test";
+  s.source_path = source_path;
   BrdfDesc lambert;
   lambert.kind = BrdfKind::Lambert;
   s.brdfs.push_back(lambert);
@@ -39,6 +39,13 @@ inline SceneDesc furnace_box(float albedo, Rgb le) {
   m.brdf = 0;
   m.diffuse = Rgb(albedo);
   s.materials.push_back(m);
+  return s;
+}
+
+// A closed cube [-1,1]^3 whose faces are one LightMesh emitting Le inward, with a Lambertian interior of albedo a.
+// Seen from inside, every strategy must give Le * sum_{k=0..D} a^k (D bounces), i.e. Le / (1 - a) unbounded.
+inline SceneDesc furnace_box(float albedo, Rgb le) {
+  SceneDesc s = lambertian_scene(albedo);
   MeshDesc box;
   box.name = "furnace";
   box.positions = {{-1, -1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, 1, 1}, {1, 1, 1}, {1, 1, -1}};

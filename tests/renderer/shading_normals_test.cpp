@@ -21,15 +21,7 @@ constexpr double kRelTol = 2e-4;  // delta light: no Monte Carlo noise
 const Vec3f kTilted = normalize(Vec3f{0.6f, 0.0f, 0.8f});
 
 SceneDesc floor_scene() {
-  SceneDesc s;
-  s.format = "test";
-  BrdfDesc lambert;
-  lambert.kind = BrdfKind::Lambert;
-  s.brdfs.push_back(lambert);
-  MaterialDesc m;
-  m.brdf = 0;
-  m.diffuse = Rgb(kAlbedo);
-  s.materials.push_back(m);
+  SceneDesc s = lambertian_scene(kAlbedo);
   s.point_lights.push_back({{0.0f, 0.0f, kLightHeight}, Rgb(kIntensity)});
   CameraDesc cam;
   cam.id = "1";

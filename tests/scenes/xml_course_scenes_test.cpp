@@ -23,11 +23,6 @@ const fs::path kCeng795 = fs::path(KILN_SHARED_DIR) / "scenes" / "ceng795";
 
 SceneDesc load(const std::string& rel) { return load_ceng795_xml((kCeng795 / rel).string()); }
 
-bool has_unsupported(const SceneDesc& s, const std::string& prefix) {
-  return std::any_of(s.unsupported.begin(), s.unsupported.end(),
-                     [&](const std::string& u) { return u.rfind(prefix, 0) == 0; });
-}
-
 TEST(XmlCourseScenes, EveryFileLoads) {
   REQUIRE_SHARED_SCENES();
   std::vector<fs::path> files;
