@@ -2,6 +2,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -257,6 +258,16 @@ MeshDesc build_mesh(const tinyobj::attrib_t& attrib, const std::vector<tinyobj::
   return mesh;
 }
 
+// tinyobjloader parses numbers with its own routine, which can turn text the pre-scan accepts as finite (e.g.
+// "0.E473882", zero with an out-of-range exponent: 0 * inf) into NaN or inf; what it read is checked again.
+void require_finite(const std::vector<tinyobj::real_t>& values, size_t per_element, const char* what,
+                    const std::string& source_name) {
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw Error(source_name, "", std::string(what) + " number " + std::to_string(i / per_element + 1) +
+                                       " does not read as a finite number (an exponent out of range?)");
+}
+
 }  // namespace
 
 MeshDesc parse_obj(const std::string& text, const std::string& source_name) {
@@ -273,6 +284,9 @@ MeshDesc parse_obj(const std::string& text, const std::string& source_name) {
     while (!err.empty() && (err.back() == '\n' || err.back() == '.')) err.pop_back();
     throw Error(source_name, "", "tinyobjloader: " + (err.empty() ? std::string("parse failed") : err));
   }
+  require_finite(attrib.vertices, 3, "vertex position 'v'", source_name);
+  require_finite(attrib.normals, 3, "vertex normal 'vn'", source_name);
+  require_finite(attrib.texcoords, 2, "texture coordinate 'vt'", source_name);
   return build_mesh(attrib, shapes, source_name);
 }
 
