@@ -69,6 +69,12 @@ SceneDesc scene_at(float scale, float size, Rng& rng) {
   return s;
 }
 
+// The j-th ray spawned from si: even j a continuation towards dir, odd j a shadow ray to a point 10 sizes away.
+Ray spawned_ray(const SurfaceInteraction& si, Vec3f dir, int j, float size) {
+  return j % 2 == 0 ? spawn_ray(si.p, si.ng, dir, 0.0f, si.extent)
+                    : spawn_ray_to(si.p, si.ng, si.p + dir * (10.0f * size), 0.0f, si.extent);
+}
+
 // A point on shape `shape` of the world (roughly uniform; only used as an aim point).
 Vec3f point_on(const World& w, uint32_t shape, Rng& rng) {
   const Shape& sh = w.geometry.shapes[shape];
@@ -119,9 +125,7 @@ TEST_P(Reintersection, SpawnedRaysDoNotHitTheirOwnSurface) {
       const float radius = is_sphere ? w->geometry.spheres[w->geometry.shapes[h.shape].index].radius : 0.0f;
       for (int j = 0; j < kSpawnedPerHit; ++j) {
         const Vec3f dir = random_unit(rng);
-        // Alternate between a continuation ray and a shadow ray to a point 10 sizes away.
-        const Ray r = (j % 2 == 0) ? spawn_ray(si.p, si.ng, dir, 0.0f, si.extent)
-                                    : spawn_ray_to(si.p, si.ng, si.p + dir * (10.0f * size), 0.0f, si.extent);
+        const Ray r = spawned_ray(si, dir, j, size);
         Hit h2;
         ++spawned;
         if (!w->accel->intersect(r, h2) || h2.shape != h.shape) continue;
@@ -177,8 +181,7 @@ TEST_P(Reintersection, InstanceFarFromItsOwnOriginDoesNotShadowItself) {
         const SurfaceInteraction si = make_interaction(*w, primary, h);
         for (int j = 0; j < kSpawnedPerHit; ++j) {
           const Vec3f dir = random_unit(rng);
-          const Ray r = (j % 2 == 0) ? spawn_ray(si.p, si.ng, dir, 0.0f, si.extent)
-                                     : spawn_ray_to(si.p, si.ng, si.p + dir * (10.0f * size), 0.0f, si.extent);
+          const Ray r = spawned_ray(si, dir, j, size);
           Hit h2;
           ++spawned;
           if (w->accel->intersect(r, h2)) {  // the plane is the only shape: any hit is a self-hit
