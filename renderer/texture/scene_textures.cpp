@@ -78,17 +78,17 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
     t.white = d.white;
     t.normalizer = d.normalizer.value_or(1.0f);
     if (d.source == TextureSource::Image) {
-      if (!system_) {
-        api_ = &image_plugin(scene.source_path);
+      if (!owner_.system) {
+        owner_.api = &image_plugin(scene.source_path);
         std::string error;
-        system_ = api_->texture_system_create(options, error);
-        if (!system_) throw Error(scene.source_path, d.name, error);
+        owner_.system = owner_.api->texture_system_create(options, error);
+        if (!owner_.system) throw Error(scene.source_path, d.name, error);
         stats_.texture_system_built = true;
         stats_.cache_limit_mb = options.max_memory_mb;
       }
       TextureFileInfo info;
       std::string error;
-      t.handle = api_->texture_open(system_, d.image_path, info, error);
+      t.handle = owner_.api->texture_open(owner_.system, d.image_path, info, error);
       if (!t.handle) throw Error(scene.source_path, d.name, "image '" + d.image_path + "': " + error);
       t.query.interp = d.filter == TextureFilter::Nearest ? TextureInterp::Closest : TextureInterp::Bilinear;
       t.query.wrap = d.wrap == TextureWrap::Clamp ? TextureWrapMode::Clamp : TextureWrapMode::Periodic;
@@ -107,8 +107,10 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
   material_of_desc_.assign(scene.materials.size() * 4, -1);
 }
 
-SceneTextures::~SceneTextures() {
-  if (system_) api_->texture_system_destroy(system_);
+SceneTextures::~SceneTextures() = default;
+
+SceneTextures::SystemOwner::~SystemOwner() {
+  if (system) api->texture_system_destroy(system);
 }
 
 int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures, int material,
@@ -157,12 +159,12 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
 }
 
 Rgb SceneTextures::image_value(const CompiledTexture& t, Vec2f uv) const {
-  if (t_info.generation != generation_) t_info = {generation_, api_->texture_thread_info(system_)};
+  if (t_info.generation != generation_) t_info = {generation_, owner_.api->texture_thread_info(owner_.system)};
   TextureQuery q = t.query;
   q.s = uv.x;
   q.t = uv.y;
   float rgb[3];
-  api_->texture_lookup(system_, t.handle, t_info.info, q, rgb);
+  owner_.api->texture_lookup(owner_.system, t.handle, t_info.info, q, rgb);
   if (t.grey) rgb[1] = rgb[2] = rgb[0];
   return Rgb(rgb[0], rgb[1], rgb[2]) * t.value_scale;
 }
@@ -218,7 +220,7 @@ Vec3f SceneTextures::mapped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, 
 
 TextureCacheStats SceneTextures::cache_stats() const {
   TextureCacheStats s;
-  if (system_) api_->texture_stats(system_, s);
+  if (owner_.system) owner_.api->texture_stats(owner_.system, s);
   return s;
 }
 

@@ -103,8 +103,15 @@ class SceneTextures {
   std::vector<TexturableMaterial> materials_;
   std::vector<int> material_of_desc_;  // SceneDesc material -> materials_ index (built on first use)
   int background_ = -1;
-  const ImagePluginApi* api_ = nullptr;
-  void* system_ = nullptr;
+  // Owns the plugin's TextureSystem: a member, so that a constructor which throws after creating it still frees it.
+  struct SystemOwner {
+    const ImagePluginApi* api = nullptr;
+    void* system = nullptr;
+    SystemOwner() = default;
+    SystemOwner(const SystemOwner&) = delete;
+    SystemOwner& operator=(const SystemOwner&) = delete;
+    ~SystemOwner();
+  } owner_;
   uint64_t generation_ = 0;  // tells this system's per-thread records from a destroyed one's at the same address
   TextureBuildStats stats_;
 };
