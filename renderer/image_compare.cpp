@@ -17,31 +17,42 @@ void check_same_size(const Image& a, const Image& b) {
                 std::to_string(b.width()) + "x" + std::to_string(b.height()));
 }
 
+// Counts a pixel pair that is not finite on either side; true when the pair may enter a metric.
+bool usable(Rgb a, Rgb reference, NonFinitePixels& left_out) {
+  const bool fa = a.is_finite(), fr = reference.is_finite();
+  left_out.image += !fa;
+  left_out.reference += !fr;
+  return fa && fr;
+}
+
 }  // namespace
 
 BlockStats block_luminance_stats(const Image& a, const Image& b, int block, double min_reference) {
   check_same_size(a, b);
   const int bx = (a.width() + block - 1) / block, by = (a.height() + block - 1) / block;
   std::vector<double> la(size_t(bx * by), 0.0), lb(size_t(bx * by), 0.0), n(size_t(bx * by), 0.0);
-  double sum_a = 0, sum_b = 0;
+  double sum_a = 0, sum_b = 0, used = 0;
+  BlockStats s;
   for (int y = 0; y < a.height(); ++y)
     for (int x = 0; x < a.width(); ++x) {
+      if (!usable(a.at(x, y), b.at(x, y), s.left_out)) continue;
       const size_t k = size_t((y / block) * bx + x / block);
       const double va = a.at(x, y).luminance(), vb = b.at(x, y).luminance();
+      used += 1;
       la[k] += va;
       lb[k] += vb;
       n[k] += 1;
       sum_a += va;
       sum_b += vb;
     }
-  const double mean_b = sum_b / double(size_t(a.width()) * size_t(a.height()));
+  const double mean_b = used > 0 ? sum_b / used : 0.0;
   std::vector<double> rel;
   for (size_t k = 0; k < la.size(); ++k) {
+    if (n[k] == 0) continue;
     const double ma = la[k] / n[k], mb = lb[k] / n[k];
     if (mb <= min_reference * mean_b) continue;
     rel.push_back(std::abs(ma - mb) / mb);
   }
-  BlockStats s;
   s.blocks = rel.size();
   s.mean_ratio = sum_b > 0 ? sum_a / sum_b : 0.0;
   if (rel.empty()) return s;
@@ -54,15 +65,18 @@ BlockStats block_luminance_stats(const Image& a, const Image& b, int block, doub
 ErrorStats error_stats(const Image& a, const Image& b) {
   check_same_size(a, b);
   double se = 0, rel = 0;
-  const size_t n = a.pixels().size();
-  for (size_t i = 0; i < n; ++i)
+  ErrorStats s;
+  size_t n = 0;
+  for (size_t i = 0; i < a.pixels().size(); ++i) {
+    if (!usable(a.pixels()[i], b.pixels()[i], s.left_out)) continue;
+    ++n;
     for (int c = 0; c < 3; ++c) {
       const double d = double(a.pixels()[i][c]) - double(b.pixels()[i][c]);
       const double r = b.pixels()[i][c];
       se += d * d;
       rel += d * d / (r * r + kRelMseEpsilon);
     }
-  ErrorStats s;
+  }
   s.mse = n ? se / double(3 * n) : 0.0;
   s.rmse = std::sqrt(s.mse);
   s.rel_mse = n ? rel / double(3 * n) : 0.0;

@@ -8,11 +8,18 @@
 
 namespace kiln {
 
+// A pixel that is not finite in either image (a reference's overflowed half, a NaN in a render) is left out of
+// every metric, so one such pixel cannot turn them all into NaN; the counts say how many were left out.
+struct NonFinitePixels {
+  size_t image = 0, reference = 0;
+};
+
 struct BlockStats {
   double median_rel = 0;  // median over blocks of |lum_a - lum_b| / lum_b
   double p95_rel = 0;     // 95th percentile of the same
   double mean_ratio = 0;  // mean luminance of a / mean luminance of b
   size_t blocks = 0;
+  NonFinitePixels left_out;
 };
 
 // Both images averaged over block x block pixel squares; blocks whose reference luminance is below
@@ -22,6 +29,7 @@ BlockStats block_luminance_stats(const Image& a, const Image& reference, int blo
 struct ErrorStats {
   double mse = 0, rmse = 0;
   double rel_mse = 0;  // mean of (a - b)^2 / (b^2 + eps), per channel (Rousselle et al.'s relMSE)
+  NonFinitePixels left_out;
 };
 ErrorStats error_stats(const Image& a, const Image& reference);
 

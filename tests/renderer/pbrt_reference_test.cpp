@@ -45,6 +45,7 @@ TEST(PbrtReference, KillerooSimpleMatchesPbrtV4) {
   const BlockStats st = block_luminance_stats(film.mean(), reference, kBlock);
   std::cout << "killeroo-simple vs pbrt-v4, " << kSpp << " spp, " << kBlock << "-px blocks: median " << st.median_rel
             << ", p95 " << st.p95_rel << ", mean ratio " << st.mean_ratio << " over " << st.blocks << " blocks\n";
+  EXPECT_EQ(st.left_out.image, 0u) << "pixels that are not finite";
   EXPECT_LT(st.median_rel, kMedianLimit);
   EXPECT_LT(st.p95_rel, kP95Limit);
   EXPECT_NEAR(st.mean_ratio, 1.0, 0.01);

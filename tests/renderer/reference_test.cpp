@@ -78,6 +78,7 @@ BlockStats reported_block_stats(const Image& mine, const Image& reference, const
   const BlockStats b = block_luminance_stats(mine, reference, 32);
   std::printf("[ hdr ] %s: %zu blocks, median %.4f, p95 %.4f, mean ratio %.4f\n", name.c_str(), b.blocks,
               b.median_rel, b.p95_rel, b.mean_ratio);
+  EXPECT_EQ(b.left_out.image, 0u) << name << ": pixels that are not finite";
   return b;
 }
 
@@ -329,6 +330,7 @@ TEST_F(VeachAjarReference, BlockLuminanceMatchesCourseExr) {
   const Image mine = render_course_camera(scene, 0, spp);
   const BlockStats b = block_luminance_stats(mine, ref, 32 / kVeachDownsample);
   const ErrorStats e = error_stats(mine, ref);
+  EXPECT_EQ(b.left_out.image, 0u) << "pixels that are not finite";
   std::printf("veach-ajar %dx%d at %u spp: block median %.4f p95 %.4f mean ratio %.4f mse %.4g\n", ref.width(),
               ref.height(), spp, b.median_rel, b.p95_rel, b.mean_ratio, e.mse);
   EXPECT_LT(b.median_rel, 0.03);

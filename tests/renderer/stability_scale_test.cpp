@@ -48,6 +48,7 @@ TEST_P(Scale, ScaledBoxRendersTheSameImage) {
   const ScaledRender scaled = render_at_scale(scale, accel);
   EXPECT_EQ(scaled.stats.rays.nan_samples, 0u);
   const BlockStats bs = block_luminance_stats(scaled.image, unit.image, kBlock);
+  EXPECT_EQ(bs.left_out.image + bs.left_out.reference, 0u) << "scale " << scale;
   EXPECT_LT(bs.p95_rel, kMaxBlockP95) << "scale " << scale;
   EXPECT_LT(bs.median_rel, kMaxBlockMedian) << "scale " << scale;
   EXPECT_NEAR(bs.mean_ratio, 1.0, kMaxMeanRatioError) << "scale " << scale;
