@@ -11,6 +11,10 @@
 #   FUZZ_CMAKE_ARGS=... extra configure arguments
 #   FUZZ_BUILD=DIR      build folder (default build/fuzz)
 #
+# Run length: FUZZ_SECONDS=600 FUZZ_MIN_RUNS=1000000 gives every loader at least 10^6 executions. Measured, each
+# harness on one core of the shared 2-core machine: OBJ 1.65 M in 600 s (2744/s, load average 4 to 6.5), XML 2.57 M,
+# JSON 3.67 M and pbrt 1.58 M in 540 s, PLY 1.14 M in 60 s. The rate falls as the corpus grows to 64 KB inputs.
+#
 # Reproduce a finding:  build/fuzz/kiln_fuzz_<loader> build/fuzz/artifacts/<loader>/crash-...
 # Minimise it:          build/fuzz/kiln_fuzz_<loader> -minimize_crash=1 -runs=20000 <crash file>
 # then keep the minimised input as tests/fuzz/regressions/<loader>/<short-name> (replayed by the unit tests).

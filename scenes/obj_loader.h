@@ -13,6 +13,7 @@
 // - `mtllib` / `usemtl`, groups, smoothing groups, lines and points are ignored: materials come from the caller.
 #pragma once
 #include <string>
+#include <string_view>
 
 #include "scenes/scene.h"
 
@@ -23,6 +24,6 @@ namespace kiln {
 MeshDesc load_obj(const std::string& path);
 
 // Same, from OBJ text already in memory; source_name is used in messages and as the mesh name.
-MeshDesc parse_obj(const std::string& text, const std::string& source_name);
+MeshDesc parse_obj(std::string_view text, const std::string& source_name);
 
 }  // namespace kiln

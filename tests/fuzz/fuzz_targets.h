@@ -238,7 +238,7 @@ inline Outcome run_loader(Loader loader, std::string_view data, const std::files
         check_mesh(parse_ply(data, "fuzz.ply"));
         break;
       case Loader::Obj:
-        check_mesh(parse_obj(std::string(data), "fuzz.obj"));
+        check_mesh(parse_obj(data, "fuzz.obj"));
         break;
       case Loader::Xml: {
         const auto path = scratch / "input.xml";

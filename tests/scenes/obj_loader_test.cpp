@@ -152,6 +152,9 @@ TEST(ObjLoader, BadIndicesOfEveryKindAreErrors) {
       {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/\n", "line 4: face index '' is not an integer"},
       {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1/1 2 3\n", "line 4: face vertex '1/1/1/1' has more than three"},
       {"v 0 0 0\nv 1 0 0\nf 1 2\n", "line 3: face 'f' needs at least 3 vertices, got 2"},
+      // Lines end in \r\n, a lone \r or \n, as tinyobjloader reads them: the blank fourth line is \r\n.
+      {"v 0 0 0\r\nv 1 0 0\rv 0 1 0\n\r\nf 1 2 4\n",
+       "line 5: face vertex index 4 is out of range (the file defines 3 vertices)"},
       {"v 0 0 0\nv 1 x 0\n", "line 2: vertex position 'v': 'x' is not a finite number"},
       {"v 0 0\n", "line 1: vertex position 'v' needs 3 to 6 numbers, got 2"},
       {"vn 0 0 nan\n", "line 1: vertex normal 'vn': 'nan' is not a finite number"},
