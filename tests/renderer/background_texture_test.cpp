@@ -23,7 +23,8 @@ constexpr uint32_t kSpp = 4;
 // Texel (x, y), y = 0 the top row: every texel its own value.
 Rgb texel(int x, int y) { return Rgb(1.0f + float(x), 1.0f + float(y), 0.5f); }
 
-enum class Background { None, Element2019, TextureMap2021 };
+// Element2019Png: the 2019 element with an 8-bit PNG of the same texels (byte values 2x, 3y, 128).
+enum class Background { None, Element2019, Element2019Png, TextureMap2021 };
 // A diffuse sphere in the middle of the frame, or a mirror sphere filling it (every camera ray hits it, every
 // reflected ray leaves the scene).
 enum class Object { DiffuseSphere, MirrorAround };
@@ -33,6 +34,7 @@ enum class Object { DiffuseSphere, MirrorAround };
 std::string scene_xml(Background bg, float background_colour, const std::string& renderer, Object object) {
   std::string top;
   if (bg == Background::Element2019) top = "  <BackgroundTexture>textures/background.exr</BackgroundTexture>\n";
+  if (bg == Background::Element2019Png) top = "  <BackgroundTexture>textures/background.png</BackgroundTexture>\n";
   if (bg == Background::TextureMap2021)
     top = R"(  <Textures><Images><Image id="1">textures/background.exr</Image></Images>
     <TextureMap id="1" type="image" degamma="true"><ImageId>1</ImageId><Interpolation>nearest</Interpolation>
@@ -72,6 +74,10 @@ std::string write_scene(const std::string& name, Background bg, float background
   for (int y = 0; y < kTexHeight; ++y)
     for (int x = 0; x < kTexWidth; ++x) img.at(x, y) = texel(x, y);
   write_exr(dir + "/textures/background.exr", img, {}, {});
+  std::vector<uint8_t> bytes;
+  for (int y = 0; y < kTexHeight; ++y)
+    for (int x = 0; x < kTexWidth; ++x) bytes.insert(bytes.end(), {uint8_t(2 * x), uint8_t(3 * y), 128});
+  write_png(dir + "/textures/background.png", bytes, kTexWidth, kTexHeight);
   const std::string path = dir + "/" + name;
   std::ofstream(path) << scene_xml(bg, background_colour, renderer, object);
   return path;
@@ -145,6 +151,17 @@ TEST(BackgroundTexture, Element2019ShowsTheTexelUnderEachPixelCentre) {
 // 2021: the TextureMap's Normalizer and degamma apply as for every image texture.
 TEST(BackgroundTexture, TextureMap2021ShowsTheNormalisedDegammadTexel) {
   expect_background(Background::TextureMap2021, "bg2021", [](Rgb t) { return pow(t / 2.0f, kDegammaExponent); });
+}
+
+// An 8-bit image: the file's values (0-255, the scale of BackgroundColor in the course's LDR scenes), not [0, 1].
+// (OpenImageIO returns byte / 255, which Kiln scales back: equal to a few ulps, not bit for bit.)
+TEST(BackgroundTexture, Element2019ReadsAnEightBitImageAtItsFileValues) {
+  const Image img = render_variant("bg2019_png.xml", Background::Element2019Png, 0, kCases[2]);
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{kWidth - 1, 0}, std::pair{kWidth - 1, kHeight - 1}}) {
+    const Rgb t = expected_texel(x, y);  // texel (tx, ty) holds 1 + tx, 1 + ty
+    const Rgb want(2.0f * (t.r - 1.0f), 3.0f * (t.g - 1.0f), 128.0f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(img.at(x, y)[c], want[c], 1e-3f) << x << "," << y << " channel " << c;
+  }
 }
 
 // Only camera rays see the texture: with a mirror filling the frame no camera ray misses, and the reflected rays that
