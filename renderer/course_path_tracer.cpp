@@ -38,8 +38,8 @@ struct PathBranch {
 };
 
 template <bool kDelta, bool kDielectric, bool kMeshesOnly>
-Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ray& camera_ray, Sampler& sampler,
-                           RayCounters& c) {
+Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ray& camera_ray, Vec2f film,
+                           Sampler& sampler, RayCounters& c) {
   const DirectionSampling directions = s.importance_sampling ? DirectionSampling::Brdf : DirectionSampling::Uniform;
   const bool roulette = s.roulette != CourseRoulette::Off;
   const bool use_nee = s.nee && !w.lights.empty();
@@ -60,7 +60,7 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
       const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
                                                                : query_intersect(w, ray, hit, c, depth == 0);
       if (!found) {
-        if (depth == 0) L += beta * w.background;
+        if (depth == 0) L += beta * camera_background(w, film);
         if (after_specular || !use_nee) L += beta * escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
         break;
       }
@@ -159,17 +159,17 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
 
 }  // namespace
 
-Rgb trace_course_path(const World& w, const CoursePathSettings& s, uint32_t features, const Ray& ray,
+Rgb trace_course_path(const World& w, const CoursePathSettings& s, uint32_t features, const Ray& ray, Vec2f film,
                       Sampler& sampler, RayCounters& c) {
   const bool delta = features & kFeatureDelta, dielectric = features & kFeatureDielectric;
   if (!(features & (kFeatureSpheres | kFeatureInstances | kFeatureMotionBlur))) {
-    if (dielectric) return trace_course_path_impl<true, true, true>(w, s, ray, sampler, c);
-    if (delta) return trace_course_path_impl<true, false, true>(w, s, ray, sampler, c);
-    return trace_course_path_impl<false, false, true>(w, s, ray, sampler, c);
+    if (dielectric) return trace_course_path_impl<true, true, true>(w, s, ray, film, sampler, c);
+    if (delta) return trace_course_path_impl<true, false, true>(w, s, ray, film, sampler, c);
+    return trace_course_path_impl<false, false, true>(w, s, ray, film, sampler, c);
   }
-  if (dielectric) return trace_course_path_impl<true, true, false>(w, s, ray, sampler, c);
-  if (delta) return trace_course_path_impl<true, false, false>(w, s, ray, sampler, c);
-  return trace_course_path_impl<false, false, false>(w, s, ray, sampler, c);
+  if (dielectric) return trace_course_path_impl<true, true, false>(w, s, ray, film, sampler, c);
+  if (delta) return trace_course_path_impl<true, false, false>(w, s, ray, film, sampler, c);
+  return trace_course_path_impl<false, false, false>(w, s, ray, film, sampler, c);
 }
 
 }  // namespace kiln

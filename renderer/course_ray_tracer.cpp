@@ -47,14 +47,19 @@ Rgb direct_from_lights(const World& w, const CourseRaySettings& s, const Surface
   return sum;
 }
 
-Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, int depth, Sampler& sampler,
-                    RayCounters& c) {
+// film: the camera ray's pixel (renderer/integrator.h), for the background texture camera rays see.
+Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, Vec2f film, int depth,
+                    Sampler& sampler, RayCounters& c) {
   Hit hit;
   const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
                                                            : query_intersect(w, ray, hit, c, depth == 0);
   // Rays that leave see the environment (the map or a constant infinite light) in full: the ray tracer follows
-  // only delta directions, which light sampling cannot produce.
-  if (!found) return w.background + escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
+  // only delta directions, which light sampling cannot produce. Reflected and refracted rays see the background
+  // colour (the course's), camera rays the background texture where there is one.
+  if (!found) {
+    const Rgb background = depth == 0 ? camera_background(w, film) : w.background;
+    return background + escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
+  }
   SurfaceInteraction si = make_interaction(w, ray, hit);
   const Vec3f wo = -ray.d;
   Rgb L(0.0f);
@@ -80,7 +85,8 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
       const Vec3f wi = frame.to_world(*wi_l);
       // Undo the radiance scaling: the course weighs refraction by 1 - F alone.
       const Rgb weight = branches[i].transmission ? branches[i].weight * sqr(branches[i].etap) : branches[i].weight;
-      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.ray_epsilon, ray.time), depth + 1, sampler, c);
+      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.ray_epsilon, ray.time), film, depth + 1,
+                                                 sampler, c);
     }
   }
   return L * attenuation;
@@ -88,9 +94,9 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
 
 }  // namespace
 
-Rgb trace_course_rays(const World& world, const CourseRaySettings& s, const Ray& ray, Sampler& sampler,
+Rgb trace_course_rays(const World& world, const CourseRaySettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
                       RayCounters& c) {
-  return trace_recursive(world, s, ray, 0, sampler, c);
+  return trace_recursive(world, s, ray, film, 0, sampler, c);
 }
 
 }  // namespace kiln

@@ -57,7 +57,7 @@ struct ImagePluginApi {
   void (*texture_system_destroy)(void* system) = nullptr;
   // Opens (and checks) one file; returns its handle, or null with error filled when it is missing or unreadable.
   void* (*texture_open)(void* system, const std::string& path, TextureFileInfo& info, std::string& error) = nullptr;
-  // The calling thread's Perthread record (owned by the system).
+  // A new Perthread record for the calling thread, owned by the system (destroyed with it): ask once per thread.
   void* (*texture_thread_info)(void* system) = nullptr;
   // RGB at the query (grey replicated); false when the lookup failed (the result is then black).
   bool (*texture_lookup)(void* system, void* handle, void* thread_info, const TextureQuery& query,

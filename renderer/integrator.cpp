@@ -41,14 +41,15 @@ std::string IntegratorSettings::describe() const {
   return d;
 }
 
-Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c) {
+Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
+          RayCounters& c) {
   Rgb L;
   if (const auto* p = std::get_if<PathSettings>(&s.method))
-    L = trace_path(world, *p, s.features, ray, sampler, c);
+    L = trace_path(world, *p, s.features, ray, film, sampler, c);
   else if (const auto* cp = std::get_if<CoursePathSettings>(&s.method))
-    L = trace_course_path(world, *cp, s.features, ray, sampler, c);
+    L = trace_course_path(world, *cp, s.features, ray, film, sampler, c);
   else
-    L = trace_course_rays(world, std::get<CourseRaySettings>(s.method), ray, sampler, c);
+    L = trace_course_rays(world, std::get<CourseRaySettings>(s.method), ray, film, sampler, c);
   if (s.clamp > 0.0f) {
     const float mx = L.max_component();
     if (mx > s.clamp) L *= s.clamp / mx;

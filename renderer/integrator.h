@@ -86,15 +86,28 @@ inline constexpr uint32_t kFirstPathDimension = 2;
 // The shutter time of a camera sample (motion blur), one per path: a dedicated stream (Sampler::dedicated_1d).
 inline constexpr uint32_t kTimeStream = 0x74696d65u;  // "time"
 
-// Radiance along a camera ray (the sampler is positioned at kFirstPathDimension).
-Rgb trace_path(const World& world, const PathSettings& s, uint32_t features, const Ray& ray, Sampler& sampler,
-               RayCounters& c);
-Rgb trace_course_path(const World& world, const CoursePathSettings& s, uint32_t features, const Ray& ray,
+// Radiance along a camera ray (the sampler is positioned at kFirstPathDimension). film: the ray's pixel on the
+// image, its centre in [0, 1]^2 (x to the right, y down): where a camera ray that misses looks up the background
+// texture (renderer/path_vertex.h, camera_background).
+Rgb trace_path(const World& world, const PathSettings& s, uint32_t features, const Ray& ray, Vec2f film,
+               Sampler& sampler, RayCounters& c);
+Rgb trace_course_path(const World& world, const CoursePathSettings& s, uint32_t features, const Ray& ray, Vec2f film,
                       Sampler& sampler, RayCounters& c);
-Rgb trace_course_rays(const World& world, const CourseRaySettings& s, const Ray& ray, Sampler& sampler,
+Rgb trace_course_rays(const World& world, const CourseRaySettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
                       RayCounters& c);
 
 // The integrator the settings name.
-Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Sampler& sampler, RayCounters& c);
+Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
+          RayCounters& c);
+
+// The film position of pixel (x, y) (y = 0 the top row) of a width x height image: its centre, (x + 1/2) / width,
+// (y + 1/2) / height. The CENG795 spec (§1, BackgroundTexture) maps the background image to the image plane with
+// "u = x/width, v = y/height"; x, y are read as the pixel's centre, so an image of the output's size shows texel
+// (x, y) at pixel (x, y) whatever the rounding, and v grows downwards like the image's rows (the spec's pixel j and
+// OpenImageIO's t both count from the top). One position per pixel, not per sample: the background is not blurred
+// by the pixel filter and every sample of a pixel sees the same texel.
+inline Vec2f pixel_film_position(int x, int y, int width, int height) {
+  return {(float(x) + 0.5f) / float(width), (float(y) + 0.5f) / float(height)};
+}
 
 }  // namespace kiln

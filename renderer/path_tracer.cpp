@@ -19,7 +19,8 @@ float emission_weight(const PathSettings& s, bool use_nee, bool after_specular, 
 // Specialised on the scene's feature mask (Cycles-style): without delta materials no delta probabilities are asked
 // for, without dielectrics no media are tracked, with only world-space meshes the shape dispatch is compiled out.
 template <bool kDelta, bool kDielectric, bool kMeshesOnly>
-Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray, Sampler& sampler, RayCounters& c) {
+Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray, Vec2f film, Sampler& sampler,
+                    RayCounters& c) {
   Rgb L(0.0f), beta(1.0f);
   // Product of eta^2 over transmissions: roulette ignores the 1/eta^2 radiance scaling inside dense glass, which
   // cancels when the path leaves it (pbrt-v4's etaScale).
@@ -35,7 +36,7 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
   for (int depth = 0;; ++depth) {
     Hit hit;
     if (!query_intersect(w, ray, hit, c, depth == 0)) {
-      if (depth == 0) L += beta * w.background;
+      if (depth == 0) L += beta * camera_background(w, film);
       L += beta * escaped_radiance(w, ray.d, prev, [&](float light_pdf) {
              return emission_weight(s, use_nee, after_specular, prev_pdf, light_pdf);
            });
@@ -103,17 +104,17 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
 
 }  // namespace
 
-Rgb trace_path(const World& w, const PathSettings& s, uint32_t features, const Ray& ray, Sampler& sampler,
-               RayCounters& c) {
+Rgb trace_path(const World& w, const PathSettings& s, uint32_t features, const Ray& ray, Vec2f film,
+               Sampler& sampler, RayCounters& c) {
   const bool delta = features & kFeatureDelta, dielectric = features & kFeatureDielectric;
   if (!(features & (kFeatureSpheres | kFeatureInstances | kFeatureMotionBlur))) {
-    if (dielectric) return trace_path_impl<true, true, true>(w, s, ray, sampler, c);
-    if (delta) return trace_path_impl<true, false, true>(w, s, ray, sampler, c);
-    return trace_path_impl<false, false, true>(w, s, ray, sampler, c);
+    if (dielectric) return trace_path_impl<true, true, true>(w, s, ray, film, sampler, c);
+    if (delta) return trace_path_impl<true, false, true>(w, s, ray, film, sampler, c);
+    return trace_path_impl<false, false, true>(w, s, ray, film, sampler, c);
   }
-  if (dielectric) return trace_path_impl<true, true, false>(w, s, ray, sampler, c);
-  if (delta) return trace_path_impl<true, false, false>(w, s, ray, sampler, c);
-  return trace_path_impl<false, false, false>(w, s, ray, sampler, c);
+  if (dielectric) return trace_path_impl<true, true, false>(w, s, ray, film, sampler, c);
+  if (delta) return trace_path_impl<true, false, false>(w, s, ray, film, sampler, c);
+  return trace_path_impl<false, false, false>(w, s, ray, film, sampler, c);
 }
 
 }  // namespace kiln

@@ -119,6 +119,14 @@ inline std::optional<DirectLight> sample_direct_light(const World& w, const Surf
   return DirectLight{f * ls->li * (abs_cos_theta(wi_l) / light_pdf), light_pdf, wi_l, ls->delta};
 }
 
+// What a camera ray that leaves the scene sees besides the infinite lights: the background texture at its pixel
+// (film, renderer/integrator.h) when the scene has one, else the background colour. Only camera rays: secondary rays
+// that leave see the background colour or the environment, as without a texture.
+inline Rgb camera_background(const World& w, Vec2f film) {
+  if (!w.textures || w.textures->background() < 0) return w.background;
+  return w.textures->background_value(film);
+}
+
 // Radiance that infinite lights send along a ray leaving the scene in direction d, each weighted by weight(light
 // index, the density with which NEE from `from` would have chosen d).
 // Infinite lights are constant (InfiniteLight) or an environment map (ImageInfiniteLight).

@@ -99,6 +99,9 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             break;
           }
           PixelSum& px = film.at(x, y);
+          // The pixel's place on the whole image (a crop keeps it): a background texture is looked up at the pixel
+          // centre, the same for every sample of the pixel.
+          const Vec2f film_position = pixel_film_position(x, y, camera.width(), camera.height());
           for (uint32_t s = first; s < last && !px.converged; ++s) {
             Sampler sampler(options.seed, uint32_t(x), uint32_t(y), s);
             const FilterSample fs = pixel_offset(settings, options.spp_total, filter, sampler);
@@ -108,7 +111,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             // Only a scene with motion takes a time sample (from a dedicated stream: other values are unchanged).
             if (settings.features & kFeatureMotionBlur) ray.time = sampler.dedicated_1d(kTimeStream);
             sampler.set_dimension(kFirstPathDimension);
-            Rgb L = trace(world, settings, ray, sampler, st.rays);
+            Rgb L = trace(world, settings, ray, film_position, sampler, st.rays);
             if (!L.is_finite() || L.has_negative()) {
               if (!st.has_nan) {
                 st.has_nan = true;

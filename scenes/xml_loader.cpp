@@ -118,7 +118,6 @@ class XmlLoader {
     for (Node n : root_.children("Objects")) read_objects(n);
     for (Node n : root_.children("Objects"))
       for (Node c : n.children("MeshInstance")) read_instance(c);
-    record_unsupported();
     return std::move(scene_);
   }
 
@@ -251,10 +250,16 @@ class XmlLoader {
     }
     if (Node n = opt_child(root_, "BackfaceCulling")) scene_.backface_culling = get_bool(n);
     if (Node n = opt_child(root_, "BackgroundTexture")) {  // 2019: an image path
+      // It has no Interpolation nor Normalizer: each pixel shows the texel under its centre, at the file's values
+      // (Normalizer 1), the 0-255 scale of BackgroundColor and of the output in the course's LDR scenes, as the
+      // 2019 replace_all textures give it (hw4 ellipsoids_texture). The 2021 replace_background TextureMap says
+      // both itself.
       TextureDesc t;
       t.name = location(n);
       t.image_path = resolve(get_string(n));
       t.decal = DecalMode::ReplaceBackground;
+      t.filter = TextureFilter::Nearest;
+      t.normalizer = 1.0f;
       t.wrap = TextureWrap::Clamp;
       scene_.background_texture = int(scene_.textures.size());
       scene_.textures.push_back(std::move(t));
@@ -1052,12 +1057,6 @@ class XmlLoader {
     if (!all) return;
     m.uvs.resize(globals.size());
     for (size_t i = 0; i < globals.size(); ++i) m.uvs[i] = texcoords_[size_t(int64_t(globals[i]) + shift)];
-  }
-
-  // ---- features recorded as unsupported -----------------------------------------------------------------------
-  void record_unsupported() {
-    // Camera rays that miss would need the pixel position, which the integrators do not see.
-    if (scene_.background_texture) scene_.unsupported.push_back("background texture (BackgroundTexture / replace_background)");
   }
 
   std::string file_;

@@ -15,9 +15,8 @@
 //  - Material and BRDF ids are resolved to indices into SceneDesc::materials / SceneDesc::brdfs (BRDF ids share
 //    one id space across the five kinds);
 //  - relative plyFile/binaryFile/texture paths are relative to the XML file's directory;
-//  - textures, motion blur, background textures and environment lights are validated and listed once each in
-//    SceneDesc::unsupported; unknown elements and tolerated oddities (a 5-number NearPlane) go to
-//    SceneDesc::warnings; stray text inside container elements is ignored.
+//  - unknown elements and tolerated oddities (a 5-number NearPlane) go to SceneDesc::warnings; stray text inside
+//    container elements is ignored.
 // Bad input (unreadable file, malformed XML, dangling id, bad number, wrong count, missing required element) is a
 // kiln::Error "FILE: line N (Element path): problem".
 #pragma once

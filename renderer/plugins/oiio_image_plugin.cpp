@@ -4,6 +4,8 @@
 #include <OpenImageIO/texture.h>
 
 #include <filesystem>
+#include <mutex>
+#include <vector>
 
 #include "renderer/image_plugin.h"
 
@@ -34,7 +36,18 @@ bool read_rgb(const std::string& path, std::vector<float>& rgb, int& width, int&
 
 // ---- textures ---------------------------------------------------------------------------------------------------
 
-OIIO::TextureSystem* system_of(void* s) { return static_cast<OIIO::TextureSystem*>(s); }
+// A texture system and the per-thread records made for it. The records are created and destroyed here, not taken
+// from OpenImageIO's get_perthread_info(): in OpenImageIO 2.4 that thread-specific pointer outlives its cache on
+// every thread but the one that destroys it, so a system created at a destroyed one's address hands the worker
+// threads the dead cache's records (stale tiles: wrong texels, then an assertion or a crash at exit). A process
+// that builds and renders several textured worlds (the tests) met it.
+struct System {
+  OIIO::TextureSystem* ts = nullptr;
+  std::mutex mutex;
+  std::vector<OIIO::TextureSystem::Perthread*> thread_infos;
+};
+
+OIIO::TextureSystem* system_of(void* s) { return static_cast<System*>(s)->ts; }
 
 void* texture_system_create(const TextureSystemOptions& o, std::string& error) {
   // Private (not the process-wide shared system): each world's cache, its bound and its statistics are its own.
@@ -46,11 +59,26 @@ void* texture_system_create(const TextureSystemOptions& o, std::string& error) {
   ts->attribute("max_memory_MB", o.max_memory_mb);
   ts->attribute("autotile", o.autotile);
   ts->attribute("automip", 1);  // files without MIP levels get them built in the cache (trilinear / filtered lookups)
-  return ts;
+  auto* s = new System;
+  s->ts = ts;
+  return s;
 }
 
 void texture_system_destroy(void* s) {
-  if (s) OIIO::TextureSystem::destroy(system_of(s), true);
+  if (!s) return;
+  auto* sys = static_cast<System*>(s);
+  for (OIIO::TextureSystem::Perthread* p : sys->thread_infos) sys->ts->destroy_thread_info(p);
+  OIIO::TextureSystem::destroy(sys->ts, true);
+  delete sys;
+}
+
+// A new per-thread record of system s, destroyed with it; the caller uses it from one thread only.
+OIIO::TextureSystem::Perthread* new_thread_info(void* s) {
+  auto* sys = static_cast<System*>(s);
+  OIIO::TextureSystem::Perthread* p = sys->ts->create_thread_info();
+  const std::lock_guard lock(sys->mutex);
+  sys->thread_infos.push_back(p);
+  return p;
 }
 
 float max_of(OIIO::TypeDesc t) {
@@ -95,7 +123,7 @@ void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std:
   float probe[3];
   opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
   opt.interpmode = OIIO::TextureOpt::InterpClosest;
-  if (!ts->texture(h, ts->get_perthread_info(), opt, 0.5f, 0.5f, 0, 0, 0, 0, 3, probe)) {
+  if (!ts->texture(h, new_thread_info(s), opt, 0.5f, 0.5f, 0, 0, 0, 0, 3, probe)) {
     error = first_line(ts->geterror());
     if (error.empty()) error = "its pixels cannot be read";
     return nullptr;
@@ -103,7 +131,7 @@ void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std:
   return h;
 }
 
-void* texture_thread_info(void* s) { return system_of(s)->get_perthread_info(); }
+void* texture_thread_info(void* s) { return new_thread_info(s); }
 
 bool texture_lookup(void* s, void* handle, void* thread_info, const TextureQuery& q, float rgb[3]) {
   OIIO::TextureOpt opt;

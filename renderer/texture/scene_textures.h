@@ -91,6 +91,10 @@ class SceneTextures {
   const std::vector<TextureBinding>& bindings() const { return bindings_; }
   const std::vector<TexturableMaterial>& materials() const { return materials_; }
   int background() const { return background_; }
+  // What a camera ray that misses every surface sees at film position `film` (the pixel centre in [0, 1]^2, x to the
+  // right, y down; renderer/integrator.h): the replace_background texture there, Normalizer and degamma applied as
+  // for every texture. A procedural one is evaluated at the point (u, v, 0) of the image plane.
+  Rgb background_value(Vec2f film) const { return value(background_, film, Vec3f(film.x, film.y, 0.0f)); }
   const TextureBuildStats& stats() const { return stats_; }
   TextureCacheStats cache_stats() const;
 

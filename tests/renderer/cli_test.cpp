@@ -165,6 +165,25 @@ TEST_F(CliBadInput, UnreadableTextureImage) {
   expect_bad_input(path, "garbage.jpg");
 }
 
+// A missing background image fails like any texture image, before any output: in both spellings.
+TEST_F(CliBadInput, MissingBackgroundTextureFile) {
+  std::string text = scene_text();
+  text.replace(text.find("  <Cameras>"), 0, "  <BackgroundTexture>textures/no_sky.png</BackgroundTexture>\n");
+  const std::string path = write_file(dir_, "missing_background.xml", text);
+  expect_bad_input(path, "BackgroundTexture");
+  expect_bad_input(path, "no_sky.png");
+}
+
+TEST_F(CliBadInput, MissingReplaceBackgroundImage) {
+  std::string text = scene_text();
+  text.replace(text.find("  <Objects>"), 0,
+               "  <Textures><Images><Image id=\"4\">no_sky.exr</Image></Images><TextureMap id=\"2\" type=\"image\">"
+               "<ImageId>4</ImageId><DecalMode>replace_background</DecalMode></TextureMap></Textures>\n");
+  const std::string path = write_file(dir_, "missing_replace_background.xml", text);
+  expect_bad_input(path, "TextureMap id=2");
+  expect_bad_input(path, "no_sky.exr");
+}
+
 TEST_F(CliBadInput, UndefinedTextureId) {
   const std::string path = write_file(dir_, "undefined_texture.xml", textured_scene_text("garbage.jpg", "5"));
   expect_bad_input(path, "texture 5 is not defined");

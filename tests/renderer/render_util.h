@@ -124,7 +124,9 @@ inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const
     const Vec2f px = sampler.next_2d();
     const Ray ray = cam.generate_ray(px.x * float(cam.width()), px.y * float(cam.height()), sampler.next_2d());
     sampler.set_dimension(kFirstPathDimension);
-    const double v = trace(w, s, ray, sampler, c).r;
+    const Vec2f film = pixel_film_position(int(px.x * float(cam.width())), int(px.y * float(cam.height())),
+                                           cam.width(), cam.height());
+    const double v = trace(w, s, ray, film, sampler, c).r;
     sum += v;
     sum2 += v * v;
   }
@@ -166,7 +168,8 @@ inline std::vector<Estimate> block_estimates(const World& w, const CameraDesc& c
           const Vec2f u = sampler.next_2d();
           const Ray ray = cam.generate_ray(float(px) + u.x, float(py) + u.y, sampler.next_2d());
           sampler.set_dimension(kFirstPathDimension);
-          const double v = trace(w, s, ray, sampler, c).luminance();
+          const double v = trace(w, s, ray, pixel_film_position(px, py, cam.width(), cam.height()), sampler, c)
+                               .luminance();
           sum += v;
           sum2 += v * v;
         }

@@ -443,7 +443,8 @@ TEST(XmlLoader, GlobalsAndDefaults) {
   EXPECT_FALSE(e.max_recursion_depth.has_value());
 }
 
-TEST(XmlLoader, UnsupportedFeaturesAreRecordedOnceEach) {
+// Textures of the 2019 form, with a BackgroundTexture, load with nothing left unsupported.
+TEST(XmlLoader, TexturesAndBackgroundTextureAreRead) {
   SceneText s;
   s.top = R"(
   <BackgroundTexture>textures/galaxy.jpg</BackgroundTexture>
@@ -460,10 +461,14 @@ TEST(XmlLoader, UnsupportedFeaturesAreRecordedOnceEach) {
     <Sphere id="2"><Material>1</Material><Textures>2 3</Textures><Center>1</Center><Radius>1</Radius></Sphere>
   </Objects>)";
   const SceneDesc d = load_text("unsupported.xml", s.str());
-  EXPECT_EQ(d.unsupported, (std::vector<std::string>{"background texture (BackgroundTexture / replace_background)"}));
+  EXPECT_TRUE(d.unsupported.empty());
   // Textures are read: the background image first, then the three <Texture> elements.
   ASSERT_EQ(d.textures.size(), 4u);
   EXPECT_EQ(d.background_texture, std::optional<int>(0));
+  // The 2019 background has no Interpolation nor Normalizer: the texel under the pixel centre, at the file's values.
+  EXPECT_EQ(d.textures[0].decal, DecalMode::ReplaceBackground);
+  EXPECT_EQ(d.textures[0].filter, TextureFilter::Nearest);
+  EXPECT_EQ(d.textures[0].normalizer, std::optional<float>(1.0f));
   EXPECT_TRUE(d.textures[1].bump);
   EXPECT_FLOAT_EQ(d.textures[1].bump_factor, 3.0f);
   EXPECT_FLOAT_EQ(*d.textures[1].normalizer, 255.0f);
