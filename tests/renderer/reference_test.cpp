@@ -206,10 +206,15 @@ INSTANTIATE_TEST_SUITE_P(Course, PathTracingReferenceFullSpp,
 // cancelled, so their mean divided by their own standard error (spread / sqrt n) is a paired t statistic, ~N(0, 1)
 // when both estimate the same image, whatever either's noise. Over the whole image (262144 pixels) it must stay
 // within 4.5 (two-sided 7e-6 per camera): a 1% gain is ~10 standard errors at 8 spp. The 32x32 blocks' statistics
-// are printed for the log only: the course's literal roulette and small-light NEE are heavy-tailed, and their
-// worst blocks reach |z| 5-6 with no sign of bias in the image statistic.
+// are printed for the log: the course's literal roulette and small-light NEE are heavy-tailed, and their worst
+// blocks reach |z| 5-6 with no sign of bias in the image statistic; only their maximum is bounded, loosely (below).
 constexpr uint32_t kNoiseAwareSpp = 8;
 constexpr double kMaxImageZ = 4.5;
+// Why a block limit too: a bias confined to a small object (the glass sphere losing its refraction) is diluted in
+// the image statistic (|z| 4.2 with the Fresnel split's transmission dropped) while its blocks reach |z| 22. Only
+// for cameras without the course roulette, whose block |z| stays Gaussian-like (clean maxima 2.2-5.0 over 256
+// blocks; a roulette camera's reaches 6.2); 8 is p ~ 1e-15 per block for a normal statistic.
+constexpr double kMaxBlockZ = 8.0;
 
 struct NoiseAwareStats {
   double median_z = 0, p95_z = 0, max_z = 0, mean_z = 0;
@@ -270,6 +275,9 @@ TEST_P(PathTracingNoiseAware, MatchesCourseExrWithinTheNoise) {
               kNoiseAwareSpp, s.blocks, s.median_z, s.p95_z, s.max_z, s.mean_z);
   ASSERT_GT(s.blocks, 100u);
   EXPECT_LT(s.mean_z, kMaxImageZ);
+  if (!c.roulette) {
+    EXPECT_LT(s.max_z, kMaxBlockZ) << "a block differs from the reference far beyond its noise";
+  }
 }
 INSTANTIATE_TEST_SUITE_P(Course, PathTracingNoiseAware,
                          ::testing::Values(PtCase{"diffuse", "diffuse", false},

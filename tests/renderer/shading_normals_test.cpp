@@ -90,35 +90,48 @@ TEST(ShadingNormals, InstanceNormalsFollowTheInverseTranspose) {
   expect_radiance(s, n.z, "instance under scale(1, 1, 2)");
 }
 
-// A roof of two faces meeting at the ridge x = 0 (slopes +-30 degrees, equal areas): smooth vertex normals are
-// the face normal at the eaves and the average (straight up) at the ridge, so at the ridge's foot of the point
-// light the shading normal is +z while both faces' geometric normals lean 30 degrees.
+// A roof whose two slopes (both 30 degrees) are single triangles along the ridge x = 0, the right one three times
+// as wide as the left, so three times its area: each ridge vertex's normal is the area-weighted average
+// (A_L n_L + 3 A_L n_R) / |...|, leaning 16.1 degrees right, where an unweighted average would point straight up and
+// the geometric normal leans 30 degrees left. The camera sees x slightly left of the ridge, where the shading normal
+// is almost the ridge vertices' one. Why unequal areas: with equal-area faces, area weighting and an unweighted
+// average give the same normals, and the test could not tell them apart.
 TEST(ShadingNormals, SmoothMeshGetsAreaWeightedVertexNormals) {
   SceneDesc s = floor_scene();
-  const float run = 1.0f, rise = run * std::tan(float(kPi) / 6.0f);
+  const double slope = kPi / 6;
+  const float run_left = 1.0f, run_right = 3.0f, tan_slope = float(std::tan(slope));
   MeshDesc roof;
   roof.name = "roof";
-  roof.positions = {{-run, -5, -rise}, {0, -5, 0}, {0, 5, 0}, {-run, 5, -rise}, {run, -5, -rise}, {run, 5, -rise}};
-  roof.indices = {0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2};
+  roof.positions = {{0, -5, 0}, {0, 5, 0}, {-run_left, 0, -run_left * tan_slope}, {run_right, 0, -run_right * tan_slope}};
+  roof.indices = {0, 1, 2, 1, 0, 3};  // both faces up
   roof.material = 0;
   roof.smooth = true;
   s.meshes.push_back(roof);
-  // The camera sees x slightly left of the ridge, where the interpolated normal is almost +z.
-  s.cameras[0].position = {-0.01f, -3.0f, 3.0f};
+  const double x = -0.01;
+  s.cameras[0].position = {float(x), -3.0f, 3.0f};
   s.cameras[0].gaze = normalize(Vec3f{0.0f, 3.0f, -3.0f});
-  s.point_lights[0].position = {-0.01f, 0.0f, kLightHeight};
-  // Shading normal at x = -0.01: lerp between up (ridge) and the left face normal (-sin30, 0, cos30) by 0.01.
-  const double t = 0.01 / run;
-  const Vec3f ns = normalize(Vec3f{float(-0.5 * t), 0.0f, float((1 - t) + t * std::cos(kPi / 6))});
-  // The point's height is -0.01 tan 30 below the ridge: the light is kLightHeight + that away.
-  const double d = kLightHeight + 0.01 * std::tan(kPi / 6);
-  const double want = kAlbedo / kPi * kIntensity / (d * d) * double(ns.z);
+  s.point_lights[0].position = {float(x), 0.0f, kLightHeight};
+  const Vec3f n_left{float(-std::sin(slope)), 0.0f, float(std::cos(slope))};
+  const Vec3f n_right{float(std::sin(slope)), 0.0f, float(std::cos(slope))};
+  const float area_ratio = run_right / run_left;  // equal lengths along the ridge, equal slopes
+  const auto shading_cos = [&](Vec3f ridge) {
+    // The seen point (x, 0) has barycentric weight -x / run_left on the left eave vertex, the rest split evenly
+    // between the two ridge vertices, whose normals are equal.
+    const float t = float(-x) / run_left;
+    return double(normalize(ridge * (1.0f - t) + n_left * t).z);
+  };
+  const double cos_weighted = shading_cos(normalize(n_left + n_right * area_ratio));
+  const double cos_unweighted = shading_cos(normalize(n_left + n_right));
+  const double d = kLightHeight - x * std::tan(slope);  // the point lies -x tan(slope) below the ridge
+  const auto radiance = [&](double cos_shading) { return kAlbedo / kPi * kIntensity / (d * d) * cos_shading; };
   const auto w = build_world(s, {});
   PathSettings kiln;
   kiln.max_depth = 1;
   kiln.russian_roulette = false;
   const Estimate e = estimate_mean(*w, kiln, s.cameras[0], 2000);
-  EXPECT_NEAR(e.mean, want, 1e-3 * want) << "geometric normal would give " << want * std::cos(kPi / 6) / double(ns.z);
+  EXPECT_NEAR(e.mean, radiance(cos_weighted), 1e-3 * radiance(cos_weighted))
+      << "unweighted vertex normals would give " << radiance(cos_unweighted) << ", the geometric normal "
+      << radiance(std::cos(slope));
 }
 
 }  // namespace
