@@ -106,15 +106,10 @@ Rgb trace_path_impl(const World& w, const PathSettings& s, const Ray& camera_ray
 
 Rgb trace_path(const World& w, const PathSettings& s, uint32_t features, const Ray& ray, Vec2f film,
                Sampler& sampler, RayCounters& c) {
-  const bool delta = features & kFeatureDelta, dielectric = features & kFeatureDielectric;
-  if (!(features & (kFeatureSpheres | kFeatureInstances | kFeatureMotionBlur))) {
-    if (dielectric) return trace_path_impl<true, true, true>(w, s, ray, film, sampler, c);
-    if (delta) return trace_path_impl<true, false, true>(w, s, ray, film, sampler, c);
-    return trace_path_impl<false, false, true>(w, s, ray, film, sampler, c);
-  }
-  if (dielectric) return trace_path_impl<true, true, false>(w, s, ray, film, sampler, c);
-  if (delta) return trace_path_impl<true, false, false>(w, s, ray, film, sampler, c);
-  return trace_path_impl<false, false, false>(w, s, ray, film, sampler, c);
+  return dispatch_on_features(features, [&](auto delta, auto dielectric, auto meshes_only) {
+    return trace_path_impl<decltype(delta)::value, decltype(dielectric)::value, decltype(meshes_only)::value>(
+        w, s, ray, film, sampler, c);
+  });
 }
 
 }  // namespace kiln
