@@ -11,6 +11,7 @@
 #include "renderer/interaction.h"
 #include "renderer/texture/footprint.h"
 #include "renderer/texture/scene_textures.h"
+#include "renderer/world.h"
 
 namespace kiln::test {
 namespace {
@@ -109,6 +110,7 @@ Camera pinhole() {
   d.fov_y_deg = kFovYDeg;
   d.width = kWidth;
   d.height = kHeight;
+  d.near_distance = 0.5f;  // not 1: the spread is per unit distance, whatever the image plane's
   d.position = Vec3f(0.5f, -1.0f, 2.0f);
   d.gaze = Vec3f(0, 0, -1);
   d.up = Vec3f(0, 1, 0);
@@ -175,6 +177,59 @@ TEST(TextureFootprint, UvFootprintSolvesForSkewedDerivatives) {
   const UvFootprint none = uv_footprint(dpdx, dpdy, dpdu, dpdu * 2.0f);
   EXPECT_EQ(none.dudx, 0.0f);
   EXPECT_EQ(none.dvdy, 0.0f);
+}
+
+// ---- through a render ------------------------------------------------------------------------------------------
+
+// The checkerboard on a quad that fills a 16 x 16 pinhole view, 16 texels per pixel, as replace_all (the texel is
+// the pixel's value, unshaded: no noise). Filtered, every pixel is the board's average, even at 1 spp; bilinear
+// shows the texel under each sample, 0 or 1 or between. Through render_samples: the camera reaches the textures.
+SceneDesc checker_wall(const std::string& path, TextureFilter filter) {
+  SceneDesc s = lambertian_scene(0.5f, "test.xml");
+  TextureDesc t;
+  t.name = "Texture id=1";
+  t.source = TextureSource::Image;
+  t.image_path = path;
+  t.filter = filter;
+  t.decal = DecalMode::ReplaceAll;
+  s.textures.push_back(t);
+  CameraDesc c;
+  c.use_fov = true;
+  c.fov_y_deg = kFovYDeg;
+  c.width = c.height = 16;
+  c.renderer = RendererKind::PathTracing;
+  s.cameras.push_back(c);
+  const float d = 3.0f, h = d * std::tan(radians(kFovYDeg) * 0.5f);
+  const float periods = 4.0f;  // 4 x 64 texels across 16 pixels
+  MeshDesc m;
+  m.name = "Mesh id=1";
+  m.positions = {{-h, -h, -d}, {h, -h, -d}, {h, h, -d}, {-h, h, -d}};
+  m.uvs = {{0, periods}, {periods, periods}, {periods, 0}, {0, 0}};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  m.material = 0;
+  m.textures = {0};
+  s.meshes.push_back(m);
+  return s;
+}
+
+float largest_deviation_from_half(const Image& img) {
+  float worst = 0.0f;
+  for (const Rgb& p : img.pixels()) worst = std::max(worst, std::fabs(p.r - 0.5f));
+  return worst;
+}
+
+TEST(TextureFilter, RenderedWallOfCheckersIsItsAverage) {
+  const std::string path = write_grey_exr("checker_wall.exr", checker);
+  for (const TextureFilter f : {TextureFilter::Trilinear, TextureFilter::Ewa, TextureFilter::Bilinear}) {
+    const SceneDesc s = checker_wall(path, f);
+    const auto w = build_scene_world(s);
+    const Image img = render_image(*w, s.cameras[0], scene_settings(s.cameras[0], s, w->features), 1);
+    const float worst = largest_deviation_from_half(img);
+    if (f == TextureFilter::Bilinear)
+      EXPECT_GT(worst, 0.25f);  // aliasing: some sample lands near a texel's centre
+    else
+      EXPECT_LT(worst, 0.01f) << int(f);
+  }
 }
 
 }  // namespace
