@@ -109,6 +109,7 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
       t.query.wrap = d.wrap == TextureWrap::Clamp ? TextureWrapMode::Clamp : TextureWrapMode::Periodic;
       t.value_scale = info.format_max / d.normalizer.value_or(info.format_max);
       t.grey = info.channels < 3;
+      if (filtered(t)) ++stats_.filtered;
       t.width = std::max(info.width, 1);
       t.height = std::max(info.height, 1);
       ++stats_.images;
@@ -149,6 +150,7 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
   if (!any) return -1;
   for (const int i : {b.kd, b.ks, b.all})
     if (i >= 0 && filtered(textures_[size_t(i)])) b.footprint = true;
+  if (b.footprint) ++stats_.footprint_bindings;
   if ((b.kd >= 0 || b.ks >= 0) && material >= 0 && !scene.materials[size_t(material)].pbrt) {
     const int roles = (b.kd >= 0 ? 1 : 0) | (b.ks >= 0 ? 2 : 0);
     int& slot = material_of_desc_[size_t(material) * 4 + size_t(roles)];

@@ -65,6 +65,8 @@ struct TexturableMaterial {
 
 struct TextureBuildStats {
   size_t textures = 0, images = 0, procedural = 0, bindings = 0;
+  size_t filtered = 0;            // images filtered over a footprint (Interpolation trilinear / ewa)
+  size_t footprint_bindings = 0;  // bindings that compute a hit's footprint (a filtered k_d / k_s / replace_all)
   bool texture_system_built = false;
   float cache_limit_mb = 0.0f;
 };

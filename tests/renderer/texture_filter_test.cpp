@@ -223,6 +223,9 @@ TEST(TextureFilter, RenderedWallOfCheckersIsItsAverage) {
   for (const TextureFilter f : {TextureFilter::Trilinear, TextureFilter::Ewa, TextureFilter::Bilinear}) {
     const SceneDesc s = checker_wall(path, f);
     const auto w = build_scene_world(s);
+    const bool filtered = f != TextureFilter::Bilinear;
+    EXPECT_EQ(w->textures->stats().filtered, filtered ? 1u : 0u);
+    EXPECT_EQ(w->textures->stats().footprint_bindings, filtered ? 1u : 0u);
     const Image img = render_image(*w, s.cameras[0], scene_settings(s.cameras[0], s, w->features), 1);
     const float worst = largest_deviation_from_half(img);
     if (f == TextureFilter::Bilinear)
