@@ -44,4 +44,16 @@ Ray Camera::generate_ray(float x, float y, Vec2f lens) const {
   return Ray{origin, normalize(focus_point - origin), 0.0f, kInfinity};
 }
 
+CameraSpread Camera::pixel_spread() const {
+  // A pixel step moves the image-plane point by (r - l) / width along u (film y: (t - b) / height against v); at
+  // unit distance along the axis that is the same divided by NearDistance. A thin lens's neighbouring rays share the
+  // lens point and aim at focus-plane points one pixel apart: the same angle, no change of origin.
+  CameraSpread s;
+  s.origin = e_;
+  s.axis = -w_;
+  s.dir_dx = u_ * ((r_ - l_) / (float(width_) * near_));
+  s.dir_dy = v_ * (-(t_ - b_) / (float(height_) * near_));
+  return s;
+}
+
 }  // namespace kiln

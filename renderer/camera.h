@@ -2,6 +2,7 @@
 // image plane at NearDistance with extent l r b t (NearPlane) or derived from FovY and the aspect ratio.
 #pragma once
 #include "core/ray.h"
+#include "renderer/texture/footprint.h"
 #include "scenes/scene.h"
 
 namespace kiln {
@@ -14,6 +15,8 @@ class Camera {
   int width() const { return width_; }
   int height() const { return height_; }
   bool has_aperture() const { return aperture_ > 0.0f; }
+  // The spread of rays per pixel step near the film centre, for texture footprints (renderer/texture/footprint.h).
+  CameraSpread pixel_spread() const;
 
  private:
   Vec3f e_, u_, v_, w_;

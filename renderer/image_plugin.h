@@ -16,7 +16,7 @@
 
 namespace kiln {
 
-inline constexpr int kImagePluginAbiVersion = 2;
+inline constexpr int kImagePluginAbiVersion = 3;
 inline constexpr const char* kImagePluginEntryPoint = "kiln_image_plugin_v1";
 
 // Texture lookups through OpenImageIO's TextureSystem (mip-mapped, tiled, cached; thread-safe). The handles are
@@ -30,11 +30,16 @@ struct TextureFileInfo {
   float format_max = 1.0f;  // the largest value of the file's pixel type (255 for 8 bit; 1 for float), which
                             // OpenImageIO maps to 1
 };
-enum class TextureInterp { Closest, Bilinear };
+// Closest / Bilinear: the finest level only, derivatives unread. Trilinear: bilinear in the two MIP levels around
+// the footprint's larger axis. Anisotropic: OpenImageIO's anisotropic MIP filter (several bilinear probes along the
+// footprint's major axis, at the level of its minor axis): EWA-like.
+enum class TextureInterp { Closest, Bilinear, Trilinear, Anisotropic };
 enum class TextureWrapMode { Periodic, Clamp };
 // One lookup at (s, t): s to the right, t down the image (t = 0 is the top row), both in [0, 1] over the image.
 struct TextureQuery {
   float s = 0, t = 0;
+  // The footprint: change of (s, t) per pixel step along the film's x and y (Trilinear / Anisotropic only).
+  float dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;
   TextureInterp interp = TextureInterp::Bilinear;
   TextureWrapMode wrap = TextureWrapMode::Periodic;
 };

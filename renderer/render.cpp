@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "renderer/pixel_filter.h"
+#include "renderer/texture/scene_textures.h"
 
 namespace kiln {
 namespace {
@@ -79,6 +80,8 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
                       std::to_string(p.n) + " samples but the render starts at sample " + std::to_string(first) +
                       " (adaptive renders cannot be split into sample ranges)");
   const PixelFilter filter(options.filter);
+  // Texture footprints are measured in this camera's pixels (the world outlives one render; set, not built).
+  if (world.textures) world.textures->set_camera(camera.pixel_spread());
   std::vector<RenderStats> tile_stats(tiles.size());
   Progress progress(options.progress, tiles.size());
   // One task per tile; work stealing balances uneven tiles.

@@ -125,7 +125,9 @@ inline constexpr int kMaxSubdivisionLevels = 7;
 enum class TextureSource { Image, Perlin, Checkerboard };
 // What a texture does to the surface it is attached to.
 enum class DecalMode { ReplaceKd, BlendKd, ReplaceKs, ReplaceAll, ReplaceNormal, BumpNormal, ReplaceBackground };
-enum class TextureFilter { Nearest, Bilinear };
+// Nearest / Bilinear read the finest level (the course's). Trilinear and Ewa are Kiln's own: filtered over the hit's
+// pixel footprint (renderer/texture/footprint.h), isotropic across two MIP levels or anisotropic along it.
+enum class TextureFilter { Nearest, Bilinear, Trilinear, Ewa };
 enum class TextureWrap { Repeat, Clamp };
 // Perlin noise n in [-1, 1] to a value: Linear (patch) (n + 1) / 2, AbsVal (vein) |n|.
 enum class NoiseConversion { Linear, AbsVal };

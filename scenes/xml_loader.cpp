@@ -474,8 +474,11 @@ class XmlLoader {
 
   // Children both forms share.
   void read_common_texture_children(Node c, TextureDesc& t) {
+    // trilinear and ewa are Kiln's own (filtered over the pixel footprint), accepted in both forms.
     static constexpr std::pair<std::string_view, TextureFilter> kFilters[] = {{"nearest", TextureFilter::Nearest},
-                                                                             {"bilinear", TextureFilter::Bilinear}};
+                                                                             {"bilinear", TextureFilter::Bilinear},
+                                                                             {"trilinear", TextureFilter::Trilinear},
+                                                                             {"ewa", TextureFilter::Ewa}};
     static constexpr std::pair<std::string_view, DecalMode> kDecals[] = {
         {"replace_kd", DecalMode::ReplaceKd},         {"blend_kd", DecalMode::BlendKd},
         {"replace_ks", DecalMode::ReplaceKs},         {"replace_all", DecalMode::ReplaceAll},

@@ -87,6 +87,8 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
     std::printf("textures: %zu (%zu image, %zu procedural) on %zu textured shape bindings; OpenImageIO texture system %s",
                 t.textures, t.images, t.procedural, t.bindings, t.texture_system_built ? "built" : "not built");
     if (t.texture_system_built) std::printf(" (cache bound %.0f MB)", double(t.cache_limit_mb));
+    if (t.filtered > 0)
+      std::printf("; %zu filtered over a footprint, computed on %zu bindings", t.filtered, t.footprint_bindings);
     std::printf("\n");
   }
   for (const std::string& w : world->warnings) std::printf("warning: %s\n", w.c_str());

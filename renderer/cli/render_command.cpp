@@ -48,6 +48,8 @@ nlohmann::json texture_stats_json(const World& w) {
           {"images", t.images},
           {"procedural", t.procedural},
           {"textured_shape_bindings", t.bindings},
+          {"filtered_images", t.filtered},
+          {"footprint_bindings", t.footprint_bindings},
           {"texture_system", t.texture_system_built},
           {"cache_limit_mb", t.cache_limit_mb},
           {"cache_memory_bytes", c.memory_used},

@@ -58,6 +58,21 @@ Vec3f unit_on_side(Vec3f v, Vec3f n) {
   return dot(v, n) > 0.0f ? v : n;
 }
 
+TextureInterp interp_of(TextureFilter f) {
+  switch (f) {
+    case TextureFilter::Nearest: return TextureInterp::Closest;
+    case TextureFilter::Bilinear: return TextureInterp::Bilinear;
+    case TextureFilter::Trilinear: return TextureInterp::Trilinear;
+    case TextureFilter::Ewa: return TextureInterp::Anisotropic;
+  }
+  return TextureInterp::Bilinear;
+}
+
+bool filtered(const CompiledTexture& t) {
+  return t.source == TextureSource::Image &&
+         (t.query.interp == TextureInterp::Trilinear || t.query.interp == TextureInterp::Anisotropic);
+}
+
 }  // namespace
 
 SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions& options)
@@ -90,10 +105,11 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
       std::string error;
       t.handle = owner_.api->texture_open(owner_.system, d.image_path, info, error);
       if (!t.handle) throw Error(scene.source_path, d.name, "image '" + d.image_path + "': " + error);
-      t.query.interp = d.filter == TextureFilter::Nearest ? TextureInterp::Closest : TextureInterp::Bilinear;
+      t.query.interp = interp_of(d.filter);
       t.query.wrap = d.wrap == TextureWrap::Clamp ? TextureWrapMode::Clamp : TextureWrapMode::Periodic;
       t.value_scale = info.format_max / d.normalizer.value_or(info.format_max);
       t.grey = info.channels < 3;
+      if (filtered(t)) ++stats_.filtered;
       t.width = std::max(info.width, 1);
       t.height = std::max(info.height, 1);
       ++stats_.images;
@@ -132,6 +148,9 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
     if (t.bump) b.bump = i, any = true;
   }
   if (!any) return -1;
+  for (const int i : {b.kd, b.ks, b.all})
+    if (i >= 0 && filtered(textures_[size_t(i)])) b.footprint = true;
+  if (b.footprint) ++stats_.footprint_bindings;
   if ((b.kd >= 0 || b.ks >= 0) && material >= 0 && !scene.materials[size_t(material)].pbrt) {
     const int roles = (b.kd >= 0 ? 1 : 0) | (b.ks >= 0 ? 2 : 0);
     int& slot = material_of_desc_[size_t(material) * 4 + size_t(roles)];
@@ -158,21 +177,27 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
   return int(bindings_.size()) - 1;
 }
 
-Rgb SceneTextures::image_value(const CompiledTexture& t, Vec2f uv) const {
+Rgb SceneTextures::image_value(const CompiledTexture& t, Vec2f uv, const UvFootprint& fp) const {
   if (t_info.generation != generation_) t_info = {generation_, owner_.api->texture_thread_info(owner_.system)};
   TextureQuery q = t.query;
   q.s = uv.x;
   q.t = uv.y;
+  if (filtered(t)) {  // s = u, t = v: the footprint carries over as it is
+    q.dsdx = fp.dudx;
+    q.dtdx = fp.dvdx;
+    q.dsdy = fp.dudy;
+    q.dtdy = fp.dvdy;
+  }
   float rgb[3];
   owner_.api->texture_lookup(owner_.system, t.handle, t_info.info, q, rgb);
   if (t.grey) rgb[1] = rgb[2] = rgb[0];
   return Rgb(rgb[0], rgb[1], rgb[2]) * t.value_scale;
 }
 
-Rgb SceneTextures::value(const CompiledTexture& t, Vec2f uv, Vec3f p) const {
+Rgb SceneTextures::value(const CompiledTexture& t, Vec2f uv, Vec3f p, const UvFootprint& fp) const {
   Rgb c(0.0f);
   switch (t.source) {
-    case TextureSource::Image: c = image_value(t, uv); break;
+    case TextureSource::Image: c = image_value(t, uv, fp); break;
     case TextureSource::Perlin: {
       const float n = course_perlin(p * t.noise_scale);
       c = Rgb(t.noise == NoiseConversion::Linear ? 0.5f * (n + 1.0f) : std::fabs(n)) / t.normalizer;
@@ -224,11 +249,19 @@ TextureCacheStats SceneTextures::cache_stats() const {
   return s;
 }
 
+UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si) {
+  Vec3f dpdx, dpdy;
+  approximate_dp_dxy(camera, si.p, si.ng, dpdx, dpdy);
+  return uv_footprint(dpdx, dpdy, si.dpdu, si.dpdv);
+}
+
 bool apply_textures(const SceneTextures& tex, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
   const TextureBinding& b = tex.bindings()[size_t(si.textures)];
   const Vec3f p = b.to_object.point(si.p);  // where procedural textures are evaluated
+  // Only bindings with a filtered colour texture pay for a footprint (bump and normal maps read the finest level).
+  const UvFootprint fp = b.footprint ? hit_footprint(tex.camera(), si) : UvFootprint{};
   if (b.all >= 0) {
-    unlit = tex.value(b.all, si.uv, p);
+    unlit = tex.value(b.all, si.uv, p, fp);
     return true;
   }
   if (b.normal >= 0) si.ns = tex.mapped_normal(tex.textures()[size_t(b.normal)], si.ns, si.uv, p, si.dpdu);
@@ -238,10 +271,10 @@ bool apply_textures(const SceneTextures& tex, SurfaceInteraction& si, Material& 
     scratch = tm.prototype;
     Rgb kd = tm.kd, ks = tm.ks;
     if (b.kd >= 0) {
-      const Rgb texel = tex.value(b.kd, si.uv, p);
+      const Rgb texel = tex.value(b.kd, si.uv, p, fp);
       kd = b.blend_kd ? (kd + texel) * 0.5f : texel;
     }
-    if (b.ks >= 0) ks = tex.value(b.ks, si.uv, p);
+    if (b.ks >= 0) ks = tex.value(b.ks, si.uv, p, fp);
     set_reflectances(scratch, kd, ks, tm.lambert_scale);
     si.material = &scratch;
   }

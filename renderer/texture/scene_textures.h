@@ -16,6 +16,7 @@
 #include "core/transform.h"
 #include "materials/material.h"
 #include "renderer/image_plugin.h"
+#include "renderer/texture/footprint.h"
 #include "scenes/scene.h"
 
 namespace kiln {
@@ -47,6 +48,7 @@ struct CompiledTexture {
 struct TextureBinding {
   int kd = -1, ks = -1, all = -1, normal = -1, bump = -1;
   bool blend_kd = false;
+  bool footprint = false;  // the kd, ks or all texture is filtered over the hit's footprint (trilinear / ewa)
   int material = -1;  // index into SceneTextures::materials (the texturable prototype) or -1: no k_d / k_s texture
   // Procedural textures are evaluated in the object's own space (the course's: veach-ajar's floor, scaled 1.8x along
   // x by its transformation, has squares 1.8x wider along x in its reference).
@@ -63,6 +65,8 @@ struct TexturableMaterial {
 
 struct TextureBuildStats {
   size_t textures = 0, images = 0, procedural = 0, bindings = 0;
+  size_t filtered = 0;            // images filtered over a footprint (Interpolation trilinear / ewa)
+  size_t footprint_bindings = 0;  // bindings that compute a hit's footprint (a filtered k_d / k_s / replace_all)
   bool texture_system_built = false;
   float cache_limit_mb = 0.0f;
 };
@@ -79,9 +83,12 @@ class SceneTextures {
   // to a surface (e.g. only a background texture).
   int bind(const SceneDesc& scene, const std::vector<int>& textures, int material, const Transform& to_world);
 
-  // Texture value at a hit (colour, normalised, degamma applied); p in the object's own space.
-  Rgb value(const CompiledTexture& t, Vec2f uv, Vec3f p) const;
-  Rgb value(int texture, Vec2f uv, Vec3f p) const { return value(textures_[size_t(texture)], uv, p); }
+  // Texture value at a hit (colour, normalised, degamma applied); p in the object's own space. Filtered images
+  // (trilinear / ewa) average over the footprint fp; a zero footprint reads the finest level (bilinear).
+  Rgb value(const CompiledTexture& t, Vec2f uv, Vec3f p, const UvFootprint& fp = {}) const;
+  Rgb value(int texture, Vec2f uv, Vec3f p, const UvFootprint& fp = {}) const {
+    return value(textures_[size_t(texture)], uv, p, fp);
+  }
   // The shading normal bumped by height texture t (n unit, in ng's hemisphere; dpdu/dpdv the surface's derivatives).
   Vec3f bumped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, Vec3f p, Vec3f dpdu, Vec3f dpdv) const;
   // The normal a tangent-space normal map gives.
@@ -96,10 +103,13 @@ class SceneTextures {
   // for every texture. A procedural one is evaluated at the point (u, v, 0) of the image plane.
   Rgb background_value(Vec2f film) const { return value(background_, film, Vec3f(film.x, film.y, 0.0f)); }
   const TextureBuildStats& stats() const { return stats_; }
+  // The camera whose pixels footprints are measured in: set before rendering with it (render_samples does).
+  void set_camera(const CameraSpread& camera) { camera_ = camera; }
+  const CameraSpread& camera() const { return camera_; }
   TextureCacheStats cache_stats() const;
 
  private:
-  Rgb image_value(const CompiledTexture& t, Vec2f uv) const;
+  Rgb image_value(const CompiledTexture& t, Vec2f uv, const UvFootprint& fp) const;
   float height(const CompiledTexture& t, Vec2f uv, Vec3f p) const;
 
   std::vector<CompiledTexture> textures_;
@@ -118,7 +128,11 @@ class SceneTextures {
   } owner_;
   uint64_t generation_ = 0;  // tells this system's per-thread records from a destroyed one's at the same address
   TextureBuildStats stats_;
+  CameraSpread camera_;
 };
+
+// The footprint of a hit in its texture coordinates, from the camera's pixel spread (renderer/texture/footprint.h).
+UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si);
 
 // Shading at a textured hit: sets si.material to `scratch` (the material with the texel's k_d / k_s) and bends
 // si.ns by bump or normal maps. Returns true when a replace_all texture gives the surface's colour outright

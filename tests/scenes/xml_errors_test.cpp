@@ -193,6 +193,15 @@ TEST(XmlErrors, MissingRequiredElementsAndBadValues) {
       {"shading_mode",
        with_objects("<Mesh id=\"1\" shadingMode=\"phong\"><Material>1</Material><Faces>1 2 3</Faces></Mesh>").str(),
        "shadingMode must be flat or smooth, got 'phong'"},
+      {"interpolation_2019",
+       with_objects("", "<Textures><Texture id=\"1\"><ImageName>a.png</ImageName>"
+                        "<Interpolation>bicubic</Interpolation></Texture></Textures>").str(),
+       "(Textures / Texture id=1 / Interpolation): unknown Interpolation 'bicubic' (expected nearest, bilinear, "
+       "trilinear, ewa)"},
+      {"interpolation_2021",
+       with_objects("", "<Textures><Images><Image id=\"1\">a.png</Image></Images><TextureMap id=\"2\" type=\"image\">"
+                        "<ImageId>1</ImageId><Interpolation>EWA</Interpolation></TextureMap></Textures>").str(),
+       "(Textures / TextureMap id=2 / Interpolation): unknown Interpolation 'EWA'"},
       {"material_type", edit("<Material id=\"1\">", "<Material id=\"1\" type=\"glass\">"),
        "unknown material type 'glass'"},
       {"duplicate_material", edit("</Material>", "</Material><Material id=\"1\"></Material>"),

@@ -443,6 +443,26 @@ TEST(XmlLoader, GlobalsAndDefaults) {
   EXPECT_FALSE(e.max_recursion_depth.has_value());
 }
 
+// Kiln's own filtered Interpolation values, trilinear and ewa, are read in both texture forms.
+TEST(XmlLoader, FilteredInterpolationInBothTextureForms) {
+  SceneText s;
+  s.top = R"(
+  <Textures>
+    <Texture id="1"><ImageName>textures/a.jpg</ImageName><Interpolation>trilinear</Interpolation></Texture>
+    <Texture id="2"><ImageName>textures/a.jpg</ImageName><Interpolation>ewa</Interpolation></Texture>
+    <Images><Image id="1">textures/b.png</Image></Images>
+    <TextureMap id="3" type="image"><ImageId>1</ImageId><Interpolation>ewa</Interpolation></TextureMap>
+    <TextureMap id="4" type="image"><ImageId>1</ImageId><Interpolation>trilinear</Interpolation></TextureMap>
+  </Textures>)";
+  const SceneDesc d = load_text("filtered_interpolation.xml", s.str());
+  EXPECT_TRUE(d.warnings.empty());
+  ASSERT_EQ(d.textures.size(), 4u);
+  EXPECT_EQ(d.textures[0].filter, TextureFilter::Trilinear);
+  EXPECT_EQ(d.textures[1].filter, TextureFilter::Ewa);
+  EXPECT_EQ(d.textures[2].filter, TextureFilter::Ewa);
+  EXPECT_EQ(d.textures[3].filter, TextureFilter::Trilinear);
+}
+
 // Textures of the 2019 form, with a BackgroundTexture, load with nothing left unsupported.
 TEST(XmlLoader, TexturesAndBackgroundTextureAreRead) {
   SceneText s;
