@@ -57,7 +57,7 @@ struct ImagePluginApi {
   // Returns false and fills error when it cannot.
   bool (*read_rgb)(const std::string& path, std::vector<float>& rgb, int& width, int& height,
                    std::string& error) = nullptr;
-  // A private TextureSystem (destroyed by texture_system_destroy); null on failure.
+  // A world's texture system (released by texture_system_destroy); null on failure.
   void* (*texture_system_create)(const TextureSystemOptions& options, std::string& error) = nullptr;
   void (*texture_system_destroy)(void* system) = nullptr;
   // Opens (and checks) one file; returns its handle, or null with error filled when it is missing or unreadable.

@@ -36,22 +36,23 @@ bool read_rgb(const std::string& path, std::vector<float>& rgb, int& width, int&
 
 // ---- textures ---------------------------------------------------------------------------------------------------
 
-// A texture system and the per-thread records made for it. The records are created and destroyed here, not taken
-// from OpenImageIO's get_perthread_info(): in OpenImageIO 2.4 that thread-specific pointer outlives its cache on
-// every thread but the one that destroys it, so a system created at a destroyed one's address hands the worker
-// threads the dead cache's records (stale tiles: wrong texels, then an assertion or a crash at exit). A process
-// that builds and renders several textured worlds (the tests) met it.
+// A world's view of OpenImageIO's process-wide shared TextureSystem: the per-thread records it made and the files
+// it opened, released when the world goes. Not a private system: OpenImageIO 2.4's TextureSystem::destroy deletes a
+// private one through its base class (AddressSanitizer: new-delete-type-mismatch, 184 bytes allocated, 1 freed), so
+// the object's own members are never destroyed; the shared one is owned by OpenImageIO and freed at exit. The
+// per-thread records are created and destroyed here, not taken from get_perthread_info(): that thread-specific
+// pointer outlives a destroyed cache on every thread but the one that destroys it (stale tiles, wrong texels).
 struct System {
   OIIO::TextureSystem* ts = nullptr;
   std::mutex mutex;
   std::vector<OIIO::TextureSystem::Perthread*> thread_infos;
+  std::vector<OIIO::ustring> files;
 };
 
 OIIO::TextureSystem* system_of(void* s) { return static_cast<System*>(s)->ts; }
 
 void* texture_system_create(const TextureSystemOptions& o, std::string& error) {
-  // Private (not the process-wide shared system): each world's cache, its bound and its statistics are its own.
-  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
+  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(true);
   if (!ts) {
     error = "OpenImageIO could not create a TextureSystem";
     return nullptr;
@@ -68,7 +69,8 @@ void texture_system_destroy(void* s) {
   if (!s) return;
   auto* sys = static_cast<System*>(s);
   for (OIIO::TextureSystem::Perthread* p : sys->thread_infos) sys->ts->destroy_thread_info(p);
-  OIIO::TextureSystem::destroy(sys->ts, true);
+  // A later world that opens the same path (rewritten in between) must read the file again, not this one's tiles.
+  for (const OIIO::ustring& f : sys->files) sys->ts->invalidate(f, true);
   delete sys;
 }
 
@@ -107,7 +109,9 @@ void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std:
     return nullptr;
   }
   OIIO::TextureSystem* ts = system_of(s);
-  OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(path));
+  const OIIO::ustring name(path);
+  static_cast<System*>(s)->files.push_back(name);
+  OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(name);
   OIIO::ImageSpec spec;
   if (!h || !ts->get_imagespec(h, nullptr, 0, spec) || !ts->good(h)) {
     error = first_line(ts->geterror());
