@@ -315,11 +315,9 @@ Image box_downsample(const Image& full, int factor) {
   return out;
 }
 
-// Measured at 320x180 (block median / p95 / MSE): 16 spp 0.209 / 0.778 / 18343, 64 spp 0.124 / 0.539 / 2067,
-// 256 spp 0.072 / 0.420 / 787, 1024 spp 0.044 / 0.380 / 541 with the checkerboard in world space (the p95 held by the
-// floor); in object space 64 spp gives 0.114 / 0.447 / 2476 and 256 spp 0.063 / 0.242 / 433, falling like noise, so
-// the limits need about 1200-1500 spp (README, "Textures"). That costs ~10-20 CPU-minutes, so the test runs only when
-// KILN_VEACH_SPP names the spp.
+// Measured at 320x180 (block median / p95): 64 spp 0.114 / 0.447, 256 spp 0.063 / 0.242, 1536 spp 0.0302 / 0.105,
+// 2048 spp 0.0266 / 0.094 — falling about like noise, so the limits need about 1600 spp (README,
+// "Textures"). That costs ~17 CPU-minutes at 2048 spp, so the test runs only when KILN_VEACH_SPP names the spp.
 inline constexpr int kVeachDownsample = 4;
 uint32_t veach_spp() {
   const char* v = std::getenv("KILN_VEACH_SPP");
@@ -329,7 +327,7 @@ class VeachAjarReference : public ::testing::Test {};
 TEST_F(VeachAjarReference, BlockLuminanceMatchesCourseExr) {
   REQUIRE_SHARED();
   const uint32_t spp = veach_spp();
-  if (spp == 0) GTEST_SKIP() << "set KILN_VEACH_SPP (about 1500) to render veach-ajar against its reference";
+  if (spp == 0) GTEST_SKIP() << "set KILN_VEACH_SPP (2048) to render veach-ajar against its reference";
   SceneDesc scene = load_scene(course("veach-ajar/scene.xml"));
   ASSERT_TRUE(scene.unsupported.empty());
   const Image ref = box_downsample(read_exr(course("veach-ajar/VeachAjar.exr")).rgb, kVeachDownsample);
