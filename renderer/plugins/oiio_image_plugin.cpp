@@ -141,24 +141,22 @@ void* texture_thread_info(void* s) { return new_thread_info(s); }
 // filtered modes interpolate bilinearly within a level (smart bicubic would cost ~4x the texel reads for a
 // difference the footprint's blur mostly hides) and choose levels from the derivatives.
 void set_modes(TextureInterp interp, OIIO::TextureOpt& opt) {
-  switch (interp) {
-    case TextureInterp::Closest:
-      opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
-      opt.interpmode = OIIO::TextureOpt::InterpClosest;
-      break;
-    case TextureInterp::Bilinear:
-      opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
-      opt.interpmode = OIIO::TextureOpt::InterpBilinear;
-      break;
-    case TextureInterp::Trilinear:
-      opt.mipmode = OIIO::TextureOpt::MipModeTrilinear;
-      opt.interpmode = OIIO::TextureOpt::InterpBilinear;
-      break;
-    case TextureInterp::Anisotropic:
-      opt.mipmode = OIIO::TextureOpt::MipModeAniso;
-      opt.interpmode = OIIO::TextureOpt::InterpBilinear;
-      break;
-  }
+  using Opt = OIIO::TextureOpt;
+  struct Modes {
+    Opt::MipMode mip;
+    Opt::InterpMode interp;
+  };
+  const Modes m = [&]() -> Modes {
+    switch (interp) {
+      case TextureInterp::Closest: return {Opt::MipModeNoMIP, Opt::InterpClosest};
+      case TextureInterp::Bilinear: return {Opt::MipModeNoMIP, Opt::InterpBilinear};
+      case TextureInterp::Trilinear: return {Opt::MipModeTrilinear, Opt::InterpBilinear};
+      case TextureInterp::Anisotropic: return {Opt::MipModeAniso, Opt::InterpBilinear};
+    }
+    return {Opt::MipModeNoMIP, Opt::InterpClosest};
+  }();
+  opt.mipmode = m.mip;
+  opt.interpmode = m.interp;
 }
 
 bool texture_lookup(void* s, void* handle, void* thread_info, const TextureQuery& q, float rgb[3]) {
