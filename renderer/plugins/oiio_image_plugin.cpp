@@ -47,6 +47,7 @@ struct System {
   std::mutex mutex;
   std::vector<OIIO::TextureSystem::Perthread*> thread_infos;
   std::vector<OIIO::ustring> files;
+  OIIO::TextureSystem::Perthread* probe = nullptr;  // the record texture_open reads its test texel with
 };
 
 OIIO::TextureSystem* system_of(void* s) { return static_cast<System*>(s)->ts; }
@@ -108,9 +109,10 @@ void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std:
     error = "no such file";
     return nullptr;
   }
-  OIIO::TextureSystem* ts = system_of(s);
+  auto* sys = static_cast<System*>(s);
+  OIIO::TextureSystem* ts = sys->ts;
   const OIIO::ustring name(path);
-  static_cast<System*>(s)->files.push_back(name);
+  sys->files.push_back(name);
   OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(name);
   OIIO::ImageSpec spec;
   if (!h || !ts->get_imagespec(h, nullptr, 0, spec) || !ts->good(h)) {
@@ -127,7 +129,8 @@ void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std:
   float probe[3];
   opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
   opt.interpmode = OIIO::TextureOpt::InterpClosest;
-  if (!ts->texture(h, new_thread_info(s), opt, 0.5f, 0.5f, 0, 0, 0, 0, 3, probe)) {
+  if (!sys->probe) sys->probe = new_thread_info(s);
+  if (!ts->texture(h, sys->probe, opt, 0.5f, 0.5f, 0, 0, 0, 0, 3, probe)) {
     error = first_line(ts->geterror());
     if (error.empty()) error = "its pixels cannot be read";
     return nullptr;

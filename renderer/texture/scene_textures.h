@@ -126,7 +126,7 @@ class SceneTextures {
     SystemOwner& operator=(const SystemOwner&) = delete;
     ~SystemOwner();
   } owner_;
-  uint64_t generation_ = 0;  // tells this system's per-thread records from a destroyed one's at the same address
+  uint64_t generation_ = 0;  // tells a thread's cached record of this world from one of an earlier world's
   TextureBuildStats stats_;
   CameraSpread camera_;
 };
