@@ -117,28 +117,27 @@ TEST_F(CliBadInput, TruncatedPly) {
 TEST_F(CliBadInput, UnknownExtension) { expect_bad_input(write_file(dir_, "scene.txt", "hello"), "unknown scene format"); }
 
 // Issue 21: malformed pbrt-v4 files (tests/data/pbrt/bad/) fail with exit 2, naming file and line.
+std::string bad_pbrt(const char* name) { return std::string(KILN_SOURCE_DIR "/tests/data/pbrt/bad/") + name; }
+
 TEST_F(CliBadInput, PbrtUnknownDirective) {
-  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/unknown_directive.pbrt",
-                   "line 4: unknown directive 'Frobnicate'");
+  expect_bad_input(bad_pbrt("unknown_directive.pbrt"), "line 4: unknown directive 'Frobnicate'");
 }
 
 TEST_F(CliBadInput, PbrtMissingWorldBegin) {
-  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/missing_worldbegin.pbrt",
-                   "line 3 (Material): Material before WorldBegin");
+  expect_bad_input(bad_pbrt("missing_worldbegin.pbrt"), "line 3 (Material): Material before WorldBegin");
 }
 
 TEST_F(CliBadInput, PbrtUnbalancedAttributeEnd) {
-  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/unbalanced_attributeend.pbrt",
+  expect_bad_input(bad_pbrt("unbalanced_attributeend.pbrt"),
                    "line 7 (AttributeEnd): AttributeEnd without a matching AttributeBegin");
 }
 
 TEST_F(CliBadInput, PbrtMissingInclude) {
-  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/missing_include.pbrt",
-                   "line 4 (Include): cannot find \"geometry/not_there.pbrt\"");
+  expect_bad_input(bad_pbrt("missing_include.pbrt"), "line 4 (Include): cannot find \"geometry/not_there.pbrt\"");
 }
 
 TEST_F(CliBadInput, PbrtWrongParameterType) {
-  expect_bad_input(std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/bad/wrong_parameter_type.pbrt",
+  expect_bad_input(bad_pbrt("wrong_parameter_type.pbrt"),
                    "line 2 (Camera \"perspective\"): parameter \"fov\" is declared \"string\"");
 }
 
