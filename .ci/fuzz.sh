@@ -9,7 +9,7 @@
 #   FUZZ_PARALLEL=N     harnesses run at once (default: nproc; each uses one core)
 #   FUZZ_TARGETS="ply obj xml json pbrt"   subset to run
 #   FUZZ_OPT_FLAGS="-O2 -g"   optimisation and debug flags of the instrumented build (the test command's short run
-#                             builds with "-O1 -gline-tables-only": a third less compile time, file:line in reports)
+#                             builds with "-O1 -gline-tables-only": ~10% less compile time, file:line in reports)
 #   FUZZ_CMAKE_ARGS=... extra configure arguments
 #   FUZZ_BUILD=DIR      build folder (default build/fuzz)
 #
