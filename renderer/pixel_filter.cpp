@@ -81,6 +81,15 @@ PixelFilter::PixelFilter(const PixelFilterDesc& desc) : desc_(desc) {
     bin_pdf_[size_t(i)] = float(mass[size_t(i)] / (total * h));
   }
   cdf_.back() = 1.0f;
+  guide_.resize(kFilterTableSize);
+  for (int j = 0; j < kFilterTableSize; ++j) guide_[size_t(j)] = uint16_t(find_bin(float(j) / kFilterTableSize, 0));
+}
+
+// The last bin i with cdf[i] <= u (empty bins are passed over), searching forward from a bin known to satisfy it.
+int PixelFilter::find_bin(float u, int from) const {
+  int i = from;
+  while (i < kFilterTableSize - 1 && cdf_[size_t(i) + 1] <= u) ++i;
+  return i;
 }
 
 float PixelFilter::profile(float x) const {
@@ -113,9 +122,9 @@ float PixelFilter::sample_1d(float u, float& weight) const {
     default:
       break;
   }
-  // The bin i with cdf[i] <= u < cdf[i + 1] (never an empty bin), then uniform inside it.
-  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-  const int i = std::clamp(int(it - cdf_.begin()) - 1, 0, kFilterTableSize - 1);
+  // The bin i with cdf[i] <= u < cdf[i + 1] (never an empty bin), then uniform inside it. u * kFilterTableSize is
+  // exact (a power of two), so the guide's bin never lies past u's.
+  const int i = find_bin(u, guide_[size_t(std::min(int(u * float(kFilterTableSize)), kFilterTableSize - 1))]);
   const float lo = cdf_[size_t(i)], hi = cdf_[size_t(i) + 1];
   const float frac = hi > lo ? std::min((u - lo) / (hi - lo), kOneMinusEpsilon) : 0.5f;
   const float h = 2.0f * r / float(kFilterTableSize);

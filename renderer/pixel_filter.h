@@ -18,6 +18,7 @@
 //
 // `--filter gaussian:0.01` (the smallest width Cycles accepts) samples within 0.005 px of pixel centres.
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@
 namespace kiln {
 
 inline constexpr int kFilterTableSize = 256;
+static_assert((kFilterTableSize & (kFilterTableSize - 1)) == 0, "u * kFilterTableSize must be exact");
 
 struct FilterSample {
   Vec2f offset;        // from the pixel centre, in pixels
@@ -48,11 +50,15 @@ class PixelFilter {
  private:
   float profile(float x) const;  // g
   float sample_1d(float u, float& weight) const;
+  int find_bin(float u, int from) const;
 
   PixelFilterDesc desc_;
   double g_integral_ = 0, g_abs_integral_ = 0;
   std::vector<float> cdf_;       // kFilterTableSize + 1 entries, tabulated filters only
   std::vector<float> bin_pdf_;   // density of each bin (per pixel)
+  // guide_[j]: the bin holding u = j / kFilterTableSize, so that a sample's bin is found by a short forward scan
+  // instead of a binary search over the whole table (the same bin: images do not change).
+  std::vector<uint16_t> guide_;
   // Gaussian: 2 sigma^2 and G(r), computed once (profile() runs twice per camera sample).
   double gauss_s2_ = 1.0, gauss_at_radius_ = 0.0;
 };
