@@ -19,7 +19,7 @@
 //
 // Nothing here hides an access or a report: two tasks writing the same pixel, or a read of a result before the loop
 // that produces it has been waited for, are still races (checked: two concurrent render_samples into one Film are
-// reported at renderer/render.cpp's pixel sums). Races inside Embree/libstdc++ themselves are not ours to
+// reported at renderer/render/render.cpp's pixel sums). Races inside Embree/libstdc++ themselves are not ours to
 // see (TSAN_OPTIONS ignore_noninstrumented_modules=1 in .ci/tsan.sh).
 //
 // With KILN_TSAN_GLUE_LOG=<file>, every process appends "<pid> <executable> <n>" at exit: n threads passed through

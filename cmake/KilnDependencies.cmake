@@ -2,7 +2,7 @@
 find_package(Threads REQUIRED)
 find_package(TBB REQUIRED)
 find_package(embree 3 REQUIRED)
-find_package(OpenImageIO REQUIRED)  # only for the plugin (renderer/image_plugin.h)
+find_package(OpenImageIO REQUIRED)  # only for the plugin (renderer/image_io/image_plugin.h)
 find_package(OpenEXR 3 REQUIRED)
 find_package(PNG REQUIRED)
 find_package(pugixml REQUIRED)

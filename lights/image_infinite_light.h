@@ -2,7 +2,7 @@
 // the CENG795 SphericalDirectionalLight, an environment map in pbrt's terms.
 //   image         linear RGB, row 0 at the top; negative and non-finite values count as 0
 //   scene_radius  radius of a sphere bounding the scene (shadow-ray targets, the power estimate), as InfiniteLight
-//   sampling      ImportanceSampled: Kiln's rule; UniformHemisphere: the course's rule (renderer/rules.h decides)
+//   sampling      ImportanceSampled: Kiln's rule; UniformHemisphere: the course's rule (renderer/integrators/rules.h decides)
 //
 // Mapping (the course's): y is up; a direction (x, y, z) is the texel at u = (1 + atan2(x, -z) / pi) / 2,
 // v = acos(y) / pi (theta from +y, v = 0 at the top row). Radiance is the texel's value (nearest): piecewise constant,

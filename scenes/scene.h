@@ -241,6 +241,10 @@ struct SceneDesc {
   std::vector<TextureDesc> textures;
   std::optional<int> background_texture;  // index into textures: what camera rays that miss see (replace_background)
   bool png_gamma_encode = false;  // CS171: the PNG preview applies gamma 2.2 (no tonemap)
+  // Files the render reads that the loader does not read itself (texture images, environment maps, volume grids):
+  // the scene's identity (renderer/render/scene_fingerprint.h) covers them as well as the files read through
+  // read_file_bytes (scenes/parse_util.h). Absolute or relative to the working directory, as the loader resolved them.
+  std::vector<std::string> external_files;
   // Features present in the file that the renderer does not render yet (e.g. "textures", "motion blur");
   // reported by `kiln info` and warned about once at render time.
   std::vector<std::string> unsupported;

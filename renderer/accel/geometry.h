@@ -1,4 +1,4 @@
-// Geometry as the accelerators see it; the world (renderer/world.h) builds it and hands it to them. Shapes live in
+// Geometry as the accelerators see it; the world (renderer/world/world.h) builds it and hands it to them. Shapes live in
 // world space except instances, which reference a prototype mesh in object space. A hit names its shape by index
 // into WorldGeometry::shapes.
 #pragma once

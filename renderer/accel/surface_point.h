@@ -1,5 +1,5 @@
 // The surface point and geometric normal of a hit: the one step from an accelerator's Hit to the surface that
-// shading (renderer/interaction.h), the BVH cross-check and the stability tests all start from. The point is rebuilt
+// shading (renderer/world/interaction.h), the BVH cross-check and the stability tests all start from. The point is rebuilt
 // from the primitive (barycentric interpolation of the vertices; projection back onto the sphere) rather than taken
 // as o + t d, whose error grows with the ray length and could exceed the offset that offset_ray_origin adds.
 #pragma once

@@ -15,11 +15,11 @@
 
 #include <tbb/global_control.h>
 
-#include "renderer/camera.h"
-#include "renderer/film.h"
-#include "renderer/render.h"
-#include "renderer/rules.h"
-#include "renderer/world.h"
+#include "renderer/world/camera.h"
+#include "renderer/film/film.h"
+#include "renderer/render/render.h"
+#include "renderer/integrators/rules.h"
+#include "renderer/world/world.h"
 #include "renderer/bench/trace_loop.h"
 #include "scenes/loader.h"
 

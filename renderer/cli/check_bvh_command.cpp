@@ -2,9 +2,9 @@
 
 #include "core/error.h"
 #include "renderer/accel/check_bvh.h"
-#include "renderer/camera.h"
+#include "renderer/world/camera.h"
 #include "renderer/cli/commands.h"
-#include "renderer/world.h"
+#include "renderer/world/world.h"
 #include "scenes/loader.h"
 
 namespace kiln {

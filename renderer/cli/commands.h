@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "renderer/accel/accelerator.h"
-#include "renderer/render.h"
-#include "renderer/rules.h"
+#include "renderer/render/render.h"
+#include "renderer/integrators/rules.h"
 
 namespace kiln {
 
@@ -31,8 +31,8 @@ struct RenderArgs {
   std::optional<std::string> aovs;       // "albedo,normal,depth,position,variance"
   std::optional<double> time_limit;      // seconds
   std::optional<std::string> reference;  // EXR to report error against after every doubling of spp
-  std::optional<std::string> filter;     // "NAME[:WIDTH]" (renderer/pixel_filter.h); else the scene's, else box
-  std::optional<float> adaptive;         // adaptive sampling threshold (renderer/adaptive_sampling.h)
+  std::optional<std::string> filter;     // "NAME[:WIDTH]" (renderer/film/pixel_filter.h); else the scene's, else box
+  std::optional<float> adaptive;         // adaptive sampling threshold (renderer/film/adaptive_sampling.h)
   uint32_t adaptive_min_spp = 0;         // 0: Cycles' automatic minimum
 };
 
@@ -45,7 +45,7 @@ int cmd_compare(const std::string& image, const std::string& reference, int bloc
 // a JSON summary and returns 1 when disagreements exceed the budget.
 int cmd_check_bvh(const std::string& scene_path, size_t rays, uint64_t seed);
 
-// Merges partial renders into one EXR (see renderer/merge.h).
+// Merges partial renders into one EXR (see renderer/render/merge.h).
 int cmd_merge(const std::vector<std::string>& parts, const std::string& output);
 
 // Runs fn, mapping kiln::Error (bad input) to a one-line message and exit code 2.

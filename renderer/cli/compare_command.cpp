@@ -1,8 +1,8 @@
 #include <cstdio>
 
 #include "renderer/cli/commands.h"
-#include "renderer/image_compare.h"
-#include "renderer/image_io.h"
+#include "renderer/analysis/image_compare.h"
+#include "renderer/image_io/image_io.h"
 
 namespace kiln {
 

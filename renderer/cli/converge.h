@@ -1,4 +1,4 @@
-// `kiln converge`: error against run time for several strategies on one scene (renderer/convergence.h). Writes
+// `kiln converge`: error against run time for several strategies on one scene (renderer/analysis/convergence.h). Writes
 // DIR/convergence.csv, DIR/convergence.svg (log-log relMSE against seconds), DIR/reference.exr when it had to
 // render the reference itself, and prints the strategies ranked by efficiency on stdout.
 #pragma once

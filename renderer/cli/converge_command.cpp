@@ -11,10 +11,10 @@
 
 #include "core/error.h"
 #include "renderer/cli/converge.h"
-#include "renderer/convergence.h"
-#include "renderer/image_io.h"
-#include "renderer/render.h"
-#include "renderer/world.h"
+#include "renderer/analysis/convergence.h"
+#include "renderer/image_io/image_io.h"
+#include "renderer/render/render.h"
+#include "renderer/world/world.h"
 #include "scenes/loader.h"
 
 namespace kiln {

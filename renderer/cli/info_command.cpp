@@ -2,8 +2,8 @@
 #include <map>
 
 #include "renderer/cli/commands.h"
-#include "renderer/integrator.h"
-#include "renderer/world.h"
+#include "renderer/integrators/integrator.h"
+#include "renderer/world/world.h"
 #include "renderer/texture/scene_textures.h"
 #include "scenes/loader.h"
 

@@ -10,16 +10,16 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "renderer/aov.h"
+#include "renderer/integrators/aov.h"
 #include "renderer/cli/commands.h"
-#include "renderer/merge.h"
-#include "renderer/pixel_filter.h"
-#include "renderer/progressive.h"
-#include "renderer/image_io.h"
-#include "renderer/tonemap.h"
-#include "renderer/ray_query.h"
-#include "renderer/scene_fingerprint.h"
-#include "renderer/world.h"
+#include "renderer/render/merge.h"
+#include "renderer/film/pixel_filter.h"
+#include "renderer/render/progressive.h"
+#include "renderer/image_io/image_io.h"
+#include "renderer/film/tonemap.h"
+#include "renderer/world/ray_query.h"
+#include "renderer/render/scene_fingerprint.h"
+#include "renderer/world/world.h"
 #include "renderer/texture/scene_textures.h"
 #include "scenes/loader.h"
 
@@ -188,7 +188,7 @@ int cmd_render(const RenderArgs& args) {
 
   LoadOptions lo;
   lo.subdivide = args.subdivide;
-  SceneFingerprint fingerprint;  // identifies the scene in the metadata of split renders (renderer/merge.h)
+  SceneFingerprint fingerprint;  // identifies the scene in the metadata of split renders (renderer/render/merge.h)
   SceneDesc scene = load_scene_fingerprinted(args.scene, lo, fingerprint);  // its meshes are handed to the world
   const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   if (scene.cameras.empty()) throw Error(args.scene, "", "scene has no camera");

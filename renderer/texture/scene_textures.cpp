@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "core/frame.h"
-#include "renderer/interaction.h"
+#include "renderer/world/interaction.h"
 #include "renderer/texture/checkerboard.h"
 #include "renderer/texture/perlin.h"
 #include "scenes/material_mapping.h"

@@ -1,5 +1,5 @@
 // The textures of one scene, compiled for shading (CENG795 spec §8; README "Textures"). Built only for scenes with
-// textures; the OpenImageIO TextureSystem (through the plugin, renderer/image_plugin.h) only when one of them is an
+// textures; the OpenImageIO TextureSystem (through the plugin, renderer/image_io/image_plugin.h) only when one of them is an
 // image.
 //
 // Per hit, a shape's binding says what its textures do: replace or blend k_d, replace k_s, replace the whole
@@ -15,7 +15,7 @@
 
 #include "core/transform.h"
 #include "materials/material.h"
-#include "renderer/image_plugin.h"
+#include "renderer/image_io/image_plugin.h"
 #include "renderer/texture/footprint.h"
 #include "scenes/scene.h"
 
@@ -99,7 +99,7 @@ class SceneTextures {
   const std::vector<TexturableMaterial>& materials() const { return materials_; }
   int background() const { return background_; }
   // What a camera ray that misses every surface sees at film position `film` (the pixel centre in [0, 1]^2, x to the
-  // right, y down; renderer/integrator.h): the replace_background texture there, Normalizer and degamma applied as
+  // right, y down; renderer/integrators/integrator.h): the replace_background texture there, Normalizer and degamma applied as
   // for every texture. A procedural one is evaluated at the point (u, v, 0) of the image plane.
   Rgb background_value(Vec2f film) const { return value(background_, film, Vec3f(film.x, film.y, 0.0f)); }
   const TextureBuildStats& stats() const { return stats_; }

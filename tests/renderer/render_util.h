@@ -9,12 +9,12 @@
 #include <string>
 
 #include "core/rng.h"
-#include "renderer/camera.h"
-#include "renderer/film.h"
-#include "renderer/integrator.h"
-#include "renderer/render.h"
-#include "renderer/rules.h"
-#include "renderer/world.h"
+#include "renderer/world/camera.h"
+#include "renderer/film/film.h"
+#include "renderer/integrators/integrator.h"
+#include "renderer/render/render.h"
+#include "renderer/integrators/rules.h"
+#include "renderer/world/world.h"
 #include "scenes/loader.h"
 
 namespace kiln::test {
@@ -75,7 +75,7 @@ inline std::unique_ptr<World> build_scene_world(const SceneDesc& scene) {
   return build_world(scene, wo);
 }
 
-// The settings the scene's own rules give camera cd (renderer/rules.h), without command-line overrides.
+// The settings the scene's own rules give camera cd (renderer/integrators/rules.h), without command-line overrides.
 inline IntegratorSettings scene_settings(const CameraDesc& cd, const SceneDesc& scene, uint32_t features = kFeatureAll) {
   return camera_settings(cd, scene, scene.rules, {}, features);
 }

@@ -52,7 +52,7 @@ Conventions (what a matching renderer must do to converge to the same image):
     delays it).  Clamping, light threshold, glossy blur, denoising and path
     guiding are all turned off; adaptive sampling too unless
     --adaptive-threshold T is given (Kiln's copy of this script: Kiln's
-    `--adaptive T` follows the same rule, renderer/adaptive_sampling.h).
+    `--adaptive T` follows the same rule, renderer/film/adaptive_sampling.h).
   * Pixel filter: Gaussian of width 0.01 px by default, the smallest Cycles
     allows, i.e. every camera ray goes (almost) through the pixel centre; a
     matching renderer samples pixel centres only (pbrt: box filter of radius

@@ -14,7 +14,7 @@ Usage:
     # (the tool prints the Kiln command lines that match, for every strategy)
 
 Mapping (checked against Kiln's code: scenes/material_mapping.cpp, materials/blinn_phong.cpp,
-lights/mesh_light.h, renderer/integrator.cpp, renderer/path_tracer.cpp, renderer/render.cpp):
+lights/mesh_light.h, renderer/integrators/integrator.cpp, renderer/integrators/path_tracer.cpp, renderer/render/render.cpp):
   * Material: albedo a -> <Material BRDF="1"> with DiffuseReflectance a, Specular and Ambient 0,
     BRDF 1 = <ModifiedBlinnPhong normalized="true"> (Exponent 1).  Kiln evaluates it as
     kd/pi + ks (p+8)/(8 pi) cos^p = a/pi exactly when ks = 0, and samples it with pure cosine
@@ -33,7 +33,7 @@ lights/mesh_light.h, renderer/integrator.cpp, renderer/path_tracer.cpp, renderer
     vertical angle), NearDistance 1, ImageResolution W H.  CENG795's frame w = -gaze,
     u = up x w is the one cycles_render.py builds, so images are not mirrored.
   * Depth.  Cycles' --max-bounces N means at most N+1 scattering vertices.  Kiln has two
-    depth semantics (renderer/path_tracer.cpp, integrator.cpp):
+    depth semantics (renderer/integrators/path_tracer.cpp, integrator.cpp):
       - Kiln's own (scene without <Renderer>, strategy from --strategy): depth D = D
         scattering vertices, the vertex at depth D only collects emission: D = N + 1 for
         every strategy.

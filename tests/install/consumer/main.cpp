@@ -1,7 +1,7 @@
 // Loads a scene and builds its world through the installed Kiln libraries.
 #include <cstdio>
 
-#include "renderer/world.h"
+#include "renderer/world/world.h"
 #include "scenes/loader.h"
 
 int main(int argc, char** argv) {

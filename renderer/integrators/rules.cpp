@@ -1,0 +1,164 @@
+#include "renderer/integrators/rules.h"
+
+#include "core/error.h"
+
+namespace kiln {
+namespace {
+
+// Kiln's path-tracing depth when the scene gives no MaxRecursionDepth.
+inline constexpr int kKilnDefaultMaxDepth = 8;
+// The course ray tracer's recursion depth when a scene gives no MaxRecursionDepth.
+inline constexpr int kCourseDefaultRecursion = 5;
+// The course path tracer's depth without MaxRecursionDepth and without roulette.
+inline constexpr int kCourseDefaultPathDepth = 8;
+// The course framework's ShadowRayEpsilon when a scene gives none (its parser's default).
+inline constexpr float kCourseDefaultShadowRayEpsilon = 1e-3f;
+inline constexpr char kRrSuffix[] = "+rr";
+// Whether the course renderer culls back faces for camera rays when a scene does not say (README, "Course
+// conventions").
+inline constexpr bool kCourseCullsCameraBackfaces = false;
+
+bool is_course(SceneRules r) { return r != SceneRules::Kiln; }
+
+CourseRoulette course_roulette_mode(const RuleOverrides& o) {
+  if (!o.course_roulette || *o.course_roulette == "literal") return CourseRoulette::Literal;
+  if (*o.course_roulette == "expected") return CourseRoulette::Expected;
+  throw Error("--course-roulette", "", "unknown mode '" + *o.course_roulette + "' (literal, expected)");
+}
+
+IntegratorSettings kiln_camera(const SceneDesc& scene, const RuleOverrides& o) {
+  PathSettings s = kiln_path_defaults(scene);
+  if (o.strategy) s = kiln_strategy(*o.strategy, s, "--strategy");
+  if (o.russian_roulette) s.russian_roulette = *o.russian_roulette;
+  if (o.max_depth) s.max_depth = *o.max_depth;
+  if (s.max_depth < 0 && !s.russian_roulette) throw Error("--max-depth", "", "unlimited depth needs --rr true");
+  return s;
+}
+
+IntegratorSettings ceng795_camera(const CameraDesc& camera, const SceneDesc& scene, const RuleOverrides& o) {
+  if (camera.renderer == RendererKind::RayTracing) {
+    CourseRaySettings s;
+    s.max_depth = o.max_depth.value_or(scene.max_recursion_depth.value_or(kCourseDefaultRecursion));
+    s.ray_epsilon = scene.shadow_ray_epsilon.value_or(kCourseDefaultShadowRayEpsilon);
+    s.cull_camera_backfaces = scene.backface_culling.value_or(kCourseCullsCameraBackfaces);
+    return s;
+  }
+  CoursePathSettings s;
+  s.importance_sampling = camera.pt.importance_sampling;
+  s.nee = camera.pt.next_event_estimation;
+  s.cull_camera_backfaces = scene.backface_culling.value_or(kCourseCullsCameraBackfaces);
+  const bool roulette = o.russian_roulette.value_or(camera.pt.russian_roulette);
+  s.roulette = roulette ? course_roulette_mode(o) : CourseRoulette::Off;
+  // The course's roulette replaces its depth cap.
+  s.max_depth = o.max_depth.value_or(roulette ? -1 : scene.max_recursion_depth.value_or(kCourseDefaultPathDepth));
+  if (s.max_depth < 0 && !roulette) throw Error("--max-depth", "", "unlimited depth needs --rr true");
+  return s;
+}
+
+IntegratorSettings cs171_camera(const SceneDesc& scene, const RuleOverrides& o) {
+  PathSettings s;
+  s.directions = DirectionSampling::Brdf;
+  s.nee = true;
+  s.mis = false;
+  s.russian_roulette = o.russian_roulette.value_or(false);
+  s.max_depth = o.max_depth.value_or(scene.max_recursion_depth.value_or(kKilnDefaultMaxDepth));
+  if (s.max_depth < 0 && !s.russian_roulette) throw Error("--max-depth", "", "unlimited depth needs --rr true");
+  return s;
+}
+
+}  // namespace
+
+const char* rules_name(SceneRules rules) {
+  switch (rules) {
+    case SceneRules::Kiln: return "Kiln's rules";
+    case SceneRules::Ceng795Course: return "CENG795 course rules";
+    case SceneRules::Cs171Course: return "CS171 course rules";
+  }
+  return "?";
+}
+
+SceneRules resolve_rules(const SceneDesc& scene, const RuleOverrides& o) {
+  SceneRules rules = scene.rules;
+  if (o.rules) {
+    if (*o.rules == "kiln") {
+      rules = SceneRules::Kiln;
+    } else if (*o.rules == "course") {
+      if (!is_course(scene.rules))
+        throw Error("--rules", "", "'course': " + scene.source_path + " is not a course scene; it has Kiln's rules only");
+      if (o.strategy)
+        throw Error("--strategy", "", "picks one of Kiln's path-tracing strategies and cannot be combined with --rules course");
+    } else {
+      throw Error("--rules", "", "unknown rule set '" + *o.rules + "' (kiln, course)");
+    }
+  }
+  // A strategy is one of Kiln's own: it renders with Kiln's rules.
+  if (o.strategy) {
+    kiln_strategy(*o.strategy, PathSettings{}, "--strategy");  // a bad name fails before the world is built
+    rules = SceneRules::Kiln;
+  }
+  if (o.course_roulette && rules != SceneRules::Ceng795Course)
+    throw Error("--course-roulette", "", "applies to the CENG795 course's rules only");
+  if (o.course_roulette) course_roulette_mode(o);  // validate the mode even where no camera uses it
+  return rules;
+}
+
+EllipsoidPdf ellipsoid_pdf(SceneRules rules, const RuleOverrides& o) {
+  return rules == SceneRules::Ceng795Course && !o.physical_lights ? EllipsoidPdf::CourseObjectSpace
+                                                                  : EllipsoidPdf::Exact;
+}
+
+EnvMapSampling env_map_sampling(SceneRules rules, const RuleOverrides& o) {
+  return rules == SceneRules::Ceng795Course && !o.physical_lights ? EnvMapSampling::UniformHemisphere
+                                                                  : EnvMapSampling::ImportanceSampled;
+}
+
+IntegratorSettings camera_settings(const CameraDesc& camera, const SceneDesc& scene, SceneRules rules,
+                                   const RuleOverrides& o, uint32_t features) {
+  IntegratorSettings s;
+  switch (rules) {
+    case SceneRules::Kiln: s = kiln_camera(scene, o); break;
+    case SceneRules::Ceng795Course:
+      s = ceng795_camera(camera, scene, o);
+      s.centre_single_sample = true;
+      break;
+    case SceneRules::Cs171Course: s = cs171_camera(scene, o); break;
+  }
+  s.features = features;
+  s.clamp = o.clamp;
+  return s;
+}
+
+PathSettings kiln_path_defaults(const SceneDesc& scene) {
+  PathSettings s;
+  s.max_depth = scene.max_recursion_depth.value_or(kKilnDefaultMaxDepth);
+  return s;
+}
+
+PathSettings kiln_strategy(const std::string& name, PathSettings base, const std::string& option) {
+  std::string core = name;
+  const size_t n = sizeof(kRrSuffix) - 1;
+  if (core.size() > n && core.compare(core.size() - n, n, kRrSuffix) == 0) {
+    base.russian_roulette = true;
+    core.resize(core.size() - n);
+  }
+  base.nee = base.mis = false;
+  if (core == "uniform") {
+    base.directions = DirectionSampling::Uniform;
+  } else if (core == "cosine") {
+    base.directions = DirectionSampling::Cosine;
+  } else if (core == "brdf") {
+    base.directions = DirectionSampling::Brdf;
+  } else if (core == "nee") {
+    base.directions = DirectionSampling::Brdf;
+    base.nee = true;
+  } else if (core == "mis") {
+    base.directions = DirectionSampling::Brdf;
+    base.nee = base.mis = true;
+  } else {
+    throw Error(option, "", "unknown strategy '" + name +
+                                "' (uniform, cosine, brdf, nee, mis; append +rr for Russian roulette, e.g. nee+rr)");
+  }
+  return base;
+}
+
+}  // namespace kiln

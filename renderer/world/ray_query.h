@@ -1,0 +1,52 @@
+// Accelerator queries wrapped with counting and cycle timing (the share of render time spent in ray queries).
+#pragma once
+#include <x86intrin.h>
+
+#include "renderer/integrators/integrator.h"
+
+namespace kiln {
+
+// TSC ticks per second, measured once against the steady clock: converts the query cycles counted below into
+// seconds (the ray-query time share of `kiln render`, the per-kind query rates of `kiln profile`).
+double tsc_frequency();
+
+// A camera ray when `primary`, else an indirect (bounce) ray.
+inline bool query_intersect(const World& w, const Ray& r, Hit& hit, RayCounters& c, bool primary) {
+  const uint64_t t0 = __rdtsc();
+  const bool h = w.accel->intersect(r, hit);
+  const uint64_t dt = __rdtsc() - t0;
+  if (primary) {
+    c.primary_cycles += dt;
+    ++c.primary;
+  } else {
+    c.indirect_cycles += dt;
+    ++c.indirect;
+  }
+  return h;
+}
+
+// Bounds the triangles one camera ray may pass through under backface culling (a ray through a dense mesh from
+// behind); past it the ray is taken to miss.
+inline constexpr int kMaxCulledHits = 256;
+
+// A camera ray under backface culling (the course's BackfaceCulling): triangles whose (v1-v0)x(v2-v0) normal faces
+// away from the ray are passed through; spheres, closed and seen from outside, are never culled.
+inline bool query_camera_culled(const World& w, const Ray& r, Hit& hit, RayCounters& c) {
+  Ray ray = r;
+  for (int i = 0; i < kMaxCulledHits; ++i) {
+    if (!query_intersect(w, ray, hit, c, i == 0)) return false;
+    if (w.geometry.shapes[hit.shape].kind == ShapeKind::Sphere || dot(hit.ng, ray.d) < 0.0f) return true;
+    ray.tmin = std::nextafter(hit.t, kInfinity);
+  }
+  return false;
+}
+
+inline bool query_occluded(const World& w, const Ray& r, RayCounters& c) {
+  const uint64_t t0 = __rdtsc();
+  const bool o = w.accel->occluded(r);
+  c.shadow_cycles += __rdtsc() - t0;
+  ++c.shadow;
+  return o;
+}
+
+}  // namespace kiln
