@@ -7,7 +7,7 @@
 #include "scenes/json_loader.h"
 #include "scenes/mesh_scene.h"
 #include "scenes/obj_loader.h"
-#include "scenes/pbrt_loader.h"
+#include "scenes/pbrt/loader.h"
 #include "scenes/ply_loader.h"
 #include "scenes/subdivision.h"
 #include "scenes/xml_loader.h"

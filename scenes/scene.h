@@ -81,7 +81,7 @@ struct BrdfDesc {
 
 enum class MaterialType { Plain, Mirror, Dielectric, Conductor };
 
-// pbrt-v4 materials (scenes/pbrt_loader fills this, scenes/material_mapping builds it). Spectral parameters are
+// pbrt-v4 materials (scenes/pbrt/materials.cpp fills this, scenes/material_mapping builds it). Spectral parameters are
 // already reduced to linear RGB by the loader.
 enum class PbrtMaterialKind { Diffuse, Conductor, Dielectric, CoatedDiffuse, Interface };
 struct PbrtMaterialDesc {

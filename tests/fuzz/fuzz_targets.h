@@ -35,7 +35,7 @@
 #include "scenes/gzip_file.h"
 #include "scenes/json_loader.h"
 #include "scenes/obj_loader.h"
-#include "scenes/pbrt_loader.h"
+#include "scenes/pbrt/loader.h"
 #include "scenes/ply_loader.h"
 #include "scenes/xml_loader.h"
 

@@ -1,4 +1,4 @@
-#include "scenes/pbrt_tokenizer.h"
+#include "scenes/pbrt/tokenizer.h"
 
 #include "core/error.h"
 

@@ -9,9 +9,9 @@
 #include "core/error.h"
 #include "scenes/gzip_file.h"
 #include "scenes/loader.h"
-#include "scenes/pbrt_loader.h"
-#include "scenes/pbrt_spectrum.h"
-#include "scenes/pbrt_tokenizer.h"
+#include "scenes/pbrt/loader.h"
+#include "scenes/pbrt/spectrum.h"
+#include "scenes/pbrt/tokenizer.h"
 #include "support/shared_data.h"
 
 namespace kiln {

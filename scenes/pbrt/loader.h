@@ -1,15 +1,15 @@
 // pbrt-v4 scene files (pbrt.org/fileformat-v4) as a Kiln SceneDesc. What is read, what is warned and how pbrt's
 // conventions map onto Kiln's is listed in the README ("pbrt-v4"); in short:
-//   * syntax: scenes/pbrt_tokenizer.h, typed parameter lists scenes/pbrt_params.h; Include and Import (world block;
+//   * syntax: scenes/pbrt/tokenizer.h, typed parameter lists scenes/pbrt/params.h; Include and Import (world block;
 //     its attribute changes stay inside the imported file) resolve against the including file's folder, then
 //     against the main scene's folder (pbrt's own rule); ".gz" files are gunzipped;
 //   * transforms LookAt, Translate, Scale, Rotate, Transform, ConcatTransform, Identity, CoordinateSystem /
 //     CoordSysTransform ("camera" and "world" predefined), ActiveTransform (only the start transform is rendered;
 //     motion is warned), AttributeBegin/End (TransformBegin/End read as pbrt-v4 reads them), Attribute defaults,
 //     ReverseOrientation, ObjectBegin/End + ObjectInstance (meshes become Kiln instances of a shared prototype);
-//   * camera, film, sampler and filter: scenes/pbrt_camera.h; Integrator "maxdepth" -> max_recursion_depth
+//   * camera, film, sampler and filter: scenes/pbrt/camera.h; Integrator "maxdepth" -> max_recursion_depth
 //     (default 5; pbrt and Kiln count bounces alike);
-//   * shapes: scenes/pbrt_shapes.h; materials into MaterialDesc::pbrt (scenes/scene.h), "diffuse" also as a Kiln
+//   * shapes: scenes/pbrt/shapes.h; materials into MaterialDesc::pbrt (scenes/scene.h), "diffuse" also as a Kiln
 //     Lambert BRDF; named materials; constant textures (others warned);
 //   * lights: AreaLightSource "diffuse" (L x scale, twosided) on meshes and spheres, LightSource point, spot,
 //     distant (from / to, pbrt's smoothstep spot falloff, "power" / "illuminance" as pbrt normalises them) and

@@ -1,4 +1,4 @@
-#include "scenes/pbrt_spectrum.h"
+#include "scenes/pbrt/spectrum.h"
 
 #include <algorithm>
 #include <array>

@@ -14,8 +14,8 @@
 #include <optional>
 #include <string>
 
-#include "scenes/pbrt_diagnostics.h"
-#include "scenes/pbrt_params.h"
+#include "scenes/pbrt/diagnostics.h"
+#include "scenes/pbrt/params.h"
 #include "scenes/scene.h"
 
 namespace kiln {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "scenes/pbrt_params.h"
+#include "scenes/pbrt/params.h"
 #include "scenes/scene.h"
 
 namespace kiln {

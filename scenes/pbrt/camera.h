@@ -19,8 +19,8 @@
 #include <string>
 
 #include "core/transform.h"
-#include "scenes/pbrt_diagnostics.h"
-#include "scenes/pbrt_params.h"
+#include "scenes/pbrt/diagnostics.h"
+#include "scenes/pbrt/params.h"
 #include "scenes/scene.h"
 
 namespace kiln {

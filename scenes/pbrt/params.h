@@ -19,8 +19,8 @@
 
 #include "core/color.h"
 #include "core/vec.h"
-#include "scenes/pbrt_spectrum.h"
-#include "scenes/pbrt_tokenizer.h"
+#include "scenes/pbrt/spectrum.h"
+#include "scenes/pbrt/tokenizer.h"
 
 namespace kiln {
 
@@ -40,6 +40,8 @@ enum class PbrtType : uint8_t {
   Texture
 };
 const char* pbrt_type_name(PbrtType t);
+// s between double quotes, for messages.
+std::string in_quotes(std::string_view s);
 
 struct PbrtParam {
   PbrtType type = PbrtType::Float;
@@ -85,7 +87,7 @@ class PbrtParams {
   std::vector<Vec3f> get_normals(std::string_view name) const;
   std::vector<Vec2f> get_point2s(std::string_view name) const;  // also pbrt-v3's "float uv" (pairs)
   // A spectrum: rgb, blackbody, or spectrum (wavelength-value pairs, a named spectrum, or a file of pairs), reduced
-  // to RGB for `use` (scenes/pbrt_spectrum.h). Empty when absent or given as a texture (see find_texture).
+  // to RGB for `use` (scenes/pbrt/spectrum.h). Empty when absent or given as a texture (see find_texture).
   std::optional<Rgb> find_spectrum(std::string_view name, SpectrumUse use) const;
   // A float that may also be written as a spectrum (a dielectric's eta): the spectrum's green channel.
   std::optional<float> find_float_or_spectrum(std::string_view name, bool* was_spectrum = nullptr) const;

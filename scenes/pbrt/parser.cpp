@@ -1,4 +1,7 @@
-#include "scenes/pbrt_loader.h"
+// Reading a pbrt-v4 file: tokens, directives, Include / Import, attribute and object blocks, transforms and the
+// graphics state. The objects the directives describe are made by PbrtBuilder (scenes/pbrt/builder.h), shapes by
+// scenes/pbrt/shapes.h and the camera by scenes/pbrt/camera.h.
+#include "scenes/pbrt/loader.h"
 
 #include <array>
 #include <cmath>
@@ -10,30 +13,19 @@
 #include "core/error.h"
 #include "scenes/gzip_file.h"
 #include "scenes/parse_util.h"
-#include "scenes/pbrt_camera.h"
-#include "scenes/pbrt_diagnostics.h"
-#include "scenes/pbrt_params.h"
-#include "scenes/pbrt_shapes.h"
-#include "scenes/pbrt_tokenizer.h"
+#include "scenes/pbrt/builder.h"
+#include "scenes/pbrt/camera.h"
+#include "scenes/pbrt/diagnostics.h"
+#include "scenes/pbrt/params.h"
+#include "scenes/pbrt/shapes.h"
+#include "scenes/pbrt/tokenizer.h"
 
 namespace kiln {
 namespace {
 
 namespace fs = std::filesystem;
 
-// pbrt-v4's defaults.
-constexpr float kDefaultReflectance = 0.5f;  // "diffuse" reflectance, also pbrt's default material
-constexpr float kDefaultDielectricEta = 1.5f;
-constexpr float kDefaultSpotConeAngle = 30.0f, kDefaultSpotConeDelta = 5.0f;
-constexpr float kDefaultCoatThickness = 0.01f;
-constexpr int kDefaultCoatMaxDepth = 10;
-
 using TransformPair = std::array<Transform, 2>;  // the transforms at shutter open and close (ActiveTransform)
-
-struct AreaLight {
-  Rgb radiance;
-  bool two_sided = false;
-};
 
 // Attribute "shape" / "light" / "material" / "texture" defaults in effect.
 struct AttributeDefaults {
@@ -46,7 +38,7 @@ struct GraphicsState {
   TransformPair ctm;
   bool reverse_orientation = false;
   int material = -1;  // index into SceneDesc::materials; -1: pbrt's default material
-  std::optional<AreaLight> area_light;
+  std::optional<PbrtAreaLight> area_light;
   AttributeDefaults defaults;
 };
 
@@ -62,29 +54,12 @@ struct ObjectDef {
   std::vector<SphereDesc> spheres;
 };
 
-struct TextureDef {
-  bool is_float = false;
-  std::string cls;
-  std::optional<float> value;  // constant float texture
-  std::optional<Rgb> rgb;      // constant spectrum texture
-};
-
 struct OpenFile {
   std::unique_ptr<PbrtCursor> cursor;
   std::string dir;
   int included_at = 0;                  // line of the Include / Import in the parent file
   std::optional<size_t> import_blocks;  // Import: the block depth to return to when the file ends
 };
-
-// Built piecewise: GCC 12 reports a false -Wrestrict on "\"" + s.
-std::string in_quotes(std::string_view s) {
-  std::string r;
-  r.reserve(s.size() + 2);
-  r += '"';
-  r += s;
-  r += '"';
-  return r;
-}
 
 bool same(const Transform& a, const Transform& b) { return a.matrix() == b.matrix(); }
 
@@ -356,22 +331,45 @@ class PbrtParser {
       const std::string type = read_string(cur, line, d);
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type), gs_.defaults.material);
       require_world(line, d);
-      gs_.material = make_material(type, ps);
+      gs_.material = builder_.make_material(type, ps);
       return;
     }
-    if (d == "MakeNamedMaterial") return make_named_material(cur, line);
+    if (d == "MakeNamedMaterial") {
+      const std::string name = read_string(cur, line, d);
+      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name), gs_.defaults.material);
+      require_world(line, d);
+      return builder_.make_named_material(name, ps);
+    }
     if (d == "NamedMaterial") {
       const std::string name = read_string(cur, line, d);
       require_world(line, d);
-      const auto it = named_materials_.find(name);
-      if (it == named_materials_.end())
-        fail(line, d, "no material named " + in_quotes(name) + " (MakeNamedMaterial defines them)");
-      gs_.material = it->second;
+      const auto material = builder_.named_material(name);
+      if (!material) fail(line, d, "no material named " + in_quotes(name) + " (MakeNamedMaterial defines them)");
+      gs_.material = *material;
       return;
     }
-    if (d == "Texture") return texture(cur, line);
-    if (d == "LightSource") return light_source(cur, line);
-    if (d == "AreaLightSource") return area_light_source(cur, line);
+    if (d == "Texture") {
+      const std::string name = read_string(cur, line, d);
+      const std::string type = read_string(cur, line, d);
+      const std::string cls = read_string(cur, line, d);
+      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name), gs_.defaults.texture);
+      require_world(line, d);
+      return builder_.make_texture(name, type, cls, ps);
+    }
+    if (d == "LightSource") {
+      const std::string type = read_string(cur, line, d);
+      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type), gs_.defaults.light);
+      require_world(line, d);
+      if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, d);
+      return builder_.make_light(type, ps, gs_.ctm[0]);
+    }
+    if (d == "AreaLightSource") {
+      const std::string type = read_string(cur, line, d);
+      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type), gs_.defaults.light);
+      require_world(line, d);
+      gs_.area_light = builder_.make_area_light(type, ps);
+      return;
+    }
     if (d == "ObjectBegin") {
       const std::string name = read_string(cur, line, d);
       require_world(line, d);
@@ -620,12 +618,12 @@ class PbrtParser {
     if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "Shape");
     const Transform& to_world = gs_.ctm[0];
     const bool flipped = gs_.reverse_orientation != to_world.swaps_handedness();
-    std::optional<AreaLight> light = gs_.area_light;
+    std::optional<PbrtAreaLight> light = gs_.area_light;
     if (light && current_object_) {
       warn(line, ps.context(), "area lights inside ObjectBegin are not supported (pbrt-v4 ignores them too)");
       light.reset();
     }
-    const int material = current_material();
+    const int material = gs_.material >= 0 ? gs_.material : builder_.default_material(file());
     if (s.mesh) {
       MeshDesc& m = *s.mesh;
       m.material = material;
@@ -713,276 +711,11 @@ class PbrtParser {
     }
   }
 
-  // ---- materials and textures ----
-
-  int current_material() {
-    if (gs_.material >= 0) return gs_.material;
-    if (default_material_ < 0) {
-      PbrtParams none(file(), "default material", 0);
-      default_material_ = make_material("diffuse", none);
-    }
-    return default_material_;
-  }
-
-  // A float parameter that may name a texture: constant textures are read, others warned (the default is used).
-  float float_param(const PbrtParams& ps, const std::string& name, float def) {
-    if (const auto tex = ps.find_texture(name)) {
-      const TextureDef& t = texture_def(ps, *tex);
-      if (t.is_float && t.value) return *t.value;
-      texture_not_rendered(ps, name, *tex, t);
-      return def;
-    }
-    return ps.get_float(name, def);
-  }
-
-  Rgb spectrum_param(const PbrtParams& ps, const std::string& name, SpectrumUse use, Rgb def) {
-    if (const auto tex = ps.find_texture(name)) {
-      const TextureDef& t = texture_def(ps, *tex);
-      if (!t.is_float && t.rgb) {
-        if (use == SpectrumUse::Albedo && t.rgb->max_component() > 1.0f) {
-          diag_.warn(ps, "texture " + in_quotes(*tex) + " used as " + in_quotes(name) + " exceeds 1; clamped");
-          return Rgb(std::min(t.rgb->r, 1.0f), std::min(t.rgb->g, 1.0f), std::min(t.rgb->b, 1.0f));
-        }
-        return *t.rgb;
-      }
-      texture_not_rendered(ps, name, *tex, t);
-      return def;
-    }
-    return ps.find_spectrum(name, use).value_or(def);
-  }
-
-  const TextureDef& texture_def(const PbrtParams& ps, const std::string& name) const {
-    const auto it = textures_.find(name);
-    if (it == textures_.end()) ps.fail(ps.line(), "no texture named " + in_quotes(name) + " (Texture defines them)");
-    return it->second;
-  }
-
-  void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex,
-                            const TextureDef& t) {
-    diag_.warn(ps, in_quotes(param) + " uses texture " + in_quotes(tex) + " (" + in_quotes(t.cls) +
-                       (t.is_float ? ", float" : ", spectrum") + "), which Kiln does not render; the default is used");
-    diag_.unsupported("textures");
-  }
-
-  void texture(PbrtCursor& cur, int line) {
-    const std::string name = read_string(cur, line, "Texture");
-    const std::string type = read_string(cur, line, "Texture");
-    const std::string cls = read_string(cur, line, "Texture");
-    PbrtParams ps = read_params(cur, line, "Texture " + in_quotes(name), gs_.defaults.texture);
-    require_world(line, "Texture");
-    if (type != "float" && type != "spectrum")
-      fail(line, ps.context(), "texture type must be \"float\" or \"spectrum\", got " + in_quotes(type));
-    TextureDef t;
-    t.is_float = type == "float";
-    t.cls = cls;
-    if (cls == "constant") {
-      if (t.is_float)
-        t.value = ps.get_float("value", 1.0f);
-      else
-        t.rgb = ps.find_spectrum("value", SpectrumUse::Unbounded).value_or(Rgb(1.0f));
-      diag_.report_unused(ps);
-    } else {
-      for (const PbrtParam& p : ps.params()) p.used = true;
-      warn(line, ps.context(),
-           "texture class " + in_quotes(cls) + " is not rendered; parameters that use it keep their defaults");
-      diag_.unsupported("textures");
-    }
-    textures_[name] = t;
-  }
-
-  void read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm) {
-    const float r = float_param(ps, "roughness", 0.0f);
-    pm.uroughness = ps.has("uroughness") ? float_param(ps, "uroughness", r) : r;
-    pm.vroughness = ps.has("vroughness") ? float_param(ps, "vroughness", r) : r;
-    if (pm.uroughness < 0.0f || pm.vroughness < 0.0f) ps.fail(ps.line(), "roughness must not be negative");
-    pm.remap_roughness = ps.get_bool("remaproughness", true);
-  }
-
-  float interface_eta(const PbrtParams& ps) {
-    bool spectral = false;
-    const float eta = ps.find_float_or_spectrum("eta", &spectral).value_or(kDefaultDielectricEta);
-    if (!(eta > 0.0f)) ps.fail(ps.line(), "\"eta\" must be positive");
-    if (spectral) {
-      diag_.warn(ps, "a spectral \"eta\" is rendered without dispersion (eta = " + std::to_string(eta) + ")");
-      diag_.unsupported("dispersion (spectral eta)");
-    }
-    return eta;
-  }
-
-  int make_material(const std::string& type, const PbrtParams& ps) {
-    MaterialDesc d;
-    d.id = int(scene_.materials.size()) + 1;
-    PbrtMaterialDesc pm;
-    if (ps.has("displacement")) {
-      ps.find_texture("displacement");
-      diag_.warn(ps, "displacement is not rendered");
-      diag_.unsupported("displacement (pbrt material \"displacement\")");
-    }
-    if (ps.has("normalmap")) {
-      ps.find_string("normalmap");
-      diag_.warn(ps, "normal maps are not rendered");
-      diag_.unsupported("normal maps");
-    }
-    if (type == "diffuse") {
-      pm.kind = PbrtMaterialKind::Diffuse;
-      pm.reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(kDefaultReflectance));
-    } else if (type == "coateddiffuse") {
-      pm.kind = PbrtMaterialKind::CoatedDiffuse;
-      pm.reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(kDefaultReflectance));
-      read_roughness(ps, pm);
-      pm.thickness = float_param(ps, "thickness", kDefaultCoatThickness);
-      pm.eta = interface_eta(ps);
-      pm.albedo = spectrum_param(ps, "albedo", SpectrumUse::Albedo, Rgb(0.0f));
-      pm.g = float_param(ps, "g", 0.0f);
-      pm.max_depth = ps.get_int("maxdepth", kDefaultCoatMaxDepth);
-      pm.n_samples = ps.get_int("nsamples", 1);
-      if (pm.thickness < 0.0f) ps.fail(ps.line(), "\"thickness\" must not be negative");
-      if (pm.g <= -1.0f || pm.g >= 1.0f) ps.fail(ps.line(), "\"g\" must lie in (-1, 1)");
-      if (pm.max_depth < 1 || pm.n_samples < 1) ps.fail(ps.line(), "\"maxdepth\" and \"nsamples\" must be at least 1");
-    } else if (type == "conductor") {
-      pm.kind = PbrtMaterialKind::Conductor;
-      if (ps.has("reflectance")) {
-        pm.conductor_reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(1.0f));
-      } else {
-        pm.conductor_eta = spectrum_param(ps, "eta", SpectrumUse::Unbounded, pm.conductor_eta);
-        pm.conductor_k = spectrum_param(ps, "k", SpectrumUse::Unbounded, pm.conductor_k);
-      }
-      read_roughness(ps, pm);
-    } else if (type == "dielectric") {
-      pm.kind = PbrtMaterialKind::Dielectric;
-      pm.eta = interface_eta(ps);
-      read_roughness(ps, pm);
-    } else if (type == "interface" || type.empty() || type == "none") {
-      pm.kind = PbrtMaterialKind::Interface;
-    } else {
-      diag_.warn(ps, "material " + in_quotes(type) + " is not supported; rendered as pbrt's default (diffuse, 0.5)");
-      diag_.unsupported("pbrt material " + in_quotes(type));
-      for (const PbrtParam& p : ps.params()) p.used = true;
-      pm.kind = PbrtMaterialKind::Diffuse;
-      pm.reflectance = Rgb(kDefaultReflectance);
-    }
-    d.pbrt = pm;
-    diag_.report_unused(ps);
-    scene_.materials.push_back(d);
-    return int(scene_.materials.size()) - 1;
-  }
-
-  void make_named_material(PbrtCursor& cur, int line) {
-    const std::string name = read_string(cur, line, "MakeNamedMaterial");
-    PbrtParams ps = read_params(cur, line, "MakeNamedMaterial " + in_quotes(name), gs_.defaults.material);
-    require_world(line, "MakeNamedMaterial");
-    if (named_materials_.count(name)) fail(line, ps.context(), "material " + in_quotes(name) + " is defined twice");
-    const auto type = ps.find_string("type");
-    if (!type) fail(line, ps.context(), "needs \"string type\" (diffuse, conductor, dielectric, coateddiffuse, ...)");
-    named_materials_[name] = make_material(*type, ps);
-  }
-
-  // ---- lights ----
-
-  Rgb light_spectrum(const PbrtParams& ps, const std::string& name) {
-    if (ps.find_texture(name)) ps.fail(ps.line(), in_quotes(name) + " of a light cannot be a texture");
-    return ps.find_spectrum(name, SpectrumUse::Illuminant).value_or(Rgb(1.0f));
-  }
-
-  void light_source(PbrtCursor& cur, int line) {
-    const std::string type = read_string(cur, line, "LightSource");
-    PbrtParams ps = read_params(cur, line, "LightSource " + in_quotes(type), gs_.defaults.light);
-    require_world(line, "LightSource");
-    if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "LightSource");
-    const Transform& xf = gs_.ctm[0];
-    const float scale = ps.get_float("scale", 1.0f);
-    if (type == "point") {
-      float s = scale;
-      if (const float power = ps.get_float("power", -1.0f); power > 0.0f) s *= power / (4.0f * kPi);
-      const Rgb i = light_spectrum(ps, "I") * s;
-      scene_.point_lights.push_back({xf.point(ps.find_point3("from").value_or(Vec3f(0.0f))), i});
-    } else if (type == "spot") {
-      const float cone = ps.get_float("coneangle", kDefaultSpotConeAngle);
-      const float delta = ps.get_float("conedeltaangle", kDefaultSpotConeDelta);
-      if (!(cone > 0.0f) || cone > 180.0f || delta < 0.0f)
-        ps.fail(line, "\"coneangle\" must lie in (0, 180] and \"conedeltaangle\" must not be negative");
-      const float inner = std::max(0.0f, cone - delta);
-      float s = scale;
-      if (const float power = ps.get_float("power", -1.0f); power > 0.0f) {
-        const float cos_end = std::cos(radians(cone)), cos_start = std::cos(radians(inner));
-        s *= power / (2.0f * kPi * ((1.0f - cos_start) + 0.5f * (cos_start - cos_end)));
-      }
-      const Vec3f from = ps.find_point3("from").value_or(Vec3f(0.0f));
-      const Vec3f to = ps.find_point3("to").value_or(Vec3f(0, 0, 1));
-      const Vec3f dir = xf.vector(to - from);
-      if (!(length(dir) > 0.0f) || !is_finite(dir)) ps.fail(line, "\"from\" and \"to\" must differ");
-      SpotLightDesc l;
-      l.position = xf.point(from);
-      l.direction = normalize(dir);
-      l.intensity = light_spectrum(ps, "I") * s;
-      l.coverage_deg = 2.0f * cone;
-      l.falloff_deg = 2.0f * inner;
-      l.falloff = SpotFalloff::SmoothStep;
-      scene_.spot_lights.push_back(l);
-    } else if (type == "distant") {
-      float s = scale;
-      if (const float e = ps.get_float("illuminance", -1.0f); e > 0.0f) s *= e;
-      const Vec3f from = ps.find_point3("from").value_or(Vec3f(0.0f));
-      const Vec3f to = ps.find_point3("to").value_or(Vec3f(0, 0, 1));
-      const Vec3f dir = xf.vector(to - from);
-      if (!(length(dir) > 0.0f) || !is_finite(dir)) ps.fail(line, "\"from\" and \"to\" must differ");
-      scene_.directional_lights.push_back({normalize(dir), light_spectrum(ps, "L") * s});
-    } else if (type == "infinite") {
-      infinite_light(ps, scale);
-    } else {
-      diag_.warn(ps, "light " + in_quotes(type) + " is not supported; skipped");
-      diag_.unsupported("pbrt light " + in_quotes(type));
-      for (const PbrtParam& p : ps.params()) p.used = true;
-    }
-    diag_.report_unused(ps);
-  }
-
-  void infinite_light(const PbrtParams& ps, float scale) {
-    const auto file = ps.find_string("filename");
-    if (ps.has("portal")) ps.get_point3s("portal");
-    if (file) {
-      diag_.warn(ps, "image-based infinite lights are not rendered yet (" + in_quotes(*file) + ")");
-      diag_.unsupported("image-based infinite lights (pbrt \"infinite\" with \"filename\")");
-      if (ps.has("L")) light_spectrum(ps, "L");
-      if (ps.has("illuminance")) ps.get_float("illuminance", -1.0f);
-      return;
-    }
-    float s = scale;
-    if (const float e = ps.get_float("illuminance", -1.0f); e > 0.0f) s *= e / kPi;
-    scene_.infinite_lights.push_back({light_spectrum(ps, "L") * s});
-  }
-
-  void area_light_source(PbrtCursor& cur, int line) {
-    const std::string type = read_string(cur, line, "AreaLightSource");
-    PbrtParams ps = read_params(cur, line, "AreaLightSource " + in_quotes(type), gs_.defaults.light);
-    require_world(line, "AreaLightSource");
-    if (type != "diffuse") {
-      diag_.warn(ps, "area light " + in_quotes(type) + " is not supported; the shapes that follow do not emit");
-      diag_.unsupported("pbrt area light " + in_quotes(type));
-      for (const PbrtParam& p : ps.params()) p.used = true;
-      gs_.area_light.reset();
-      return;
-    }
-    AreaLight a;
-    a.radiance = light_spectrum(ps, "L") * ps.get_float("scale", 1.0f);
-    a.two_sided = ps.get_bool("twosided", false);
-    if (const auto f = ps.find_string("filename")) {
-      diag_.warn(ps, "image emission (" + in_quotes(*f) + ") is not rendered; \"L\" is used");
-      diag_.unsupported("textured area lights (pbrt \"filename\")");
-    }
-    if (ps.has("power")) {
-      ps.get_float("power", -1.0f);
-      diag_.warn(ps, "\"power\" is not supported for area lights; the radiance is \"L\" x \"scale\"");
-      diag_.unsupported("area-light \"power\"");
-    }
-    diag_.report_unused(ps);
-    gs_.area_light = a;
-  }
-
   // ---- state ----
 
   SceneDesc scene_;
-  PbrtDiagnostics diag_{scene_};
+  PbrtBuilder builder_{scene_};
+  PbrtDiagnostics& diag_ = builder_.diagnostics();
   std::string root_path_, root_dir_, include_trace_;
   std::vector<OpenFile> files_;
   GraphicsState gs_;
@@ -991,11 +724,9 @@ class PbrtParser {
   bool world_ = false, have_camera_ = false, warned_transform_block_ = false;
   PbrtCameraInput camera_;
   std::map<std::string, TransformPair> coord_systems_;
-  std::map<std::string, int> named_materials_;
-  std::map<std::string, TextureDef> textures_;
   std::map<std::string, ObjectDef> objects_;
   std::optional<std::string> current_object_;
-  int default_material_ = -1, root_end_line_ = 0;
+  int root_end_line_ = 0;
 };
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "scenes/pbrt_params.h"
+#include "scenes/pbrt/params.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -48,16 +48,6 @@ bool is_numeric(PbrtType t) {
          t != PbrtType::Spectrum;
 }
 
-// Built piecewise: GCC 12 reports a false -Wrestrict on "\"" + std::string(s).
-std::string in_quotes(std::string_view s) {
-  std::string r;
-  r.reserve(s.size() + 2);
-  r += '"';
-  r += s;
-  r += '"';
-  return r;
-}
-
 // "0 1 2" or "400 0.5 500 0.6"; '#' starts a comment to the end of the line.
 std::vector<float> read_spectrum_file(const std::string& path, const PbrtParams& ps, int line) {
   std::string text;
@@ -83,6 +73,17 @@ std::vector<float> read_spectrum_file(const std::string& path, const PbrtParams&
 }
 
 }  // namespace
+
+// Built piecewise: GCC 12 reports a false -Wrestrict on "\"" + s.
+std::string in_quotes(std::string_view s) {
+  std::string r;
+  r.reserve(s.size() + 2);
+  r += '"';
+  r += s;
+  r += '"';
+  return r;
+}
+
 
 const char* pbrt_type_name(PbrtType t) {
   switch (t) {

@@ -1,4 +1,4 @@
-#include "scenes/pbrt_camera.h"
+#include "scenes/pbrt/camera.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "scenes/pbrt_shapes.h"
+#include "scenes/pbrt/shapes.h"
 
 #include <cmath>
 #include <filesystem>
