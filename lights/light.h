@@ -14,13 +14,14 @@
 #include "lights/light_sample.h"
 #include "lights/mesh_light.h"
 #include "lights/point_light.h"
+#include "lights/quadric_light.h"
 #include "lights/sphere_light.h"
 #include "lights/spot_light.h"
 
 namespace kiln {
 
 using Light = std::variant<PointLight, SpotLight, DirectionalLight, AreaLight, MeshLight, SphereLight, InfiniteLight,
-                           ImageInfiniteLight>;
+                           ImageInfiniteLight, QuadricLight>;
 
 std::optional<LightSample> sample_li(const Light& light, const LightQuery& q, Vec2f u);
 // Solid-angle pdf that sample_li would produce the point p_light (with surface normal n_light, on triangle

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/color.h"
+#include "core/quadric.h"
 #include "core/transform.h"
 
 namespace kiln {
@@ -149,6 +150,24 @@ struct TextureDesc {
   Rgb black{0.0f}, white{1.0f};                        // BlackColor, WhiteColor
 };
 
+// pbrt's "alpha" on a shape: its opacity, the constant `value` or, when texture >= 0, the float texture
+// SceneDesc::textures[texture] read at the hit's (u, v) through `image` (renderer/world/alpha_cutouts.h). Opacity 1
+// everywhere (the default) is no cut-out at all.
+enum class AlphaEncoding { Linear, Srgb, Gamma };
+struct AlphaImageDesc {
+  float su = 1.0f, sv = 1.0f, du = 0.0f, dv = 0.0f;  // pbrt's uv mapping: s = su u + du, t = sv v + dv
+  AlphaEncoding encoding = AlphaEncoding::Linear;    // how the file's 8-bit values become linear
+  float gamma = 2.2f;                                // AlphaEncoding::Gamma
+  float scale = 1.0f;
+  bool invert = false;  // max(0, 1 - value)
+};
+struct ShapeAlphaDesc {
+  float value = 1.0f;
+  int texture = -1;
+  AlphaImageDesc image;
+  bool cuts() const { return texture >= 0 || value < 1.0f; }
+};
+
 struct MeshDesc {
   std::string name;     // for messages, e.g. "Mesh id=3"
   std::vector<Vec3f> positions;
@@ -165,6 +184,7 @@ struct MeshDesc {
   int subdivide = 0;              // Loop subdivision levels requested for this mesh
   Vec3f motion{0, 0, 0};          // MotionBlur: world-space translation over the shutter interval (at time t: t * motion)
   std::vector<int> textures;      // indices into SceneDesc::textures
+  ShapeAlphaDesc alpha;           // pbrt "alpha" (also for the instances of an instance base)
 };
 
 struct SphereDesc {
@@ -176,6 +196,22 @@ struct SphereDesc {
   std::optional<Rgb> emission;  // LightSphere radiance
   Vec3f motion{0, 0, 0};        // MotionBlur (see MeshDesc::motion)
   std::vector<int> textures;    // indices into SceneDesc::textures
+  ShapeAlphaDesc alpha;         // pbrt "alpha": the sphere is then built as a quadric (pbrt's (u, v))
+};
+
+// A pbrt-v4 disk, cylinder or partial sphere (core/quadric.h), placed by to_world. flip: its normal is the opposite
+// of the natural one (pbrt's ReverseOrientation exclusive-or a mirroring to_world), which makes the other side the
+// one that emits (one-sided emission) and the outside of a dielectric.
+struct QuadricDesc {
+  std::string name;
+  Quadric quadric;
+  Transform to_world;
+  bool flip = false;
+  int material = -1;
+  std::optional<Rgb> emission;
+  bool two_sided_emission = false;
+  Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
+  ShapeAlphaDesc alpha;
 };
 
 struct InstanceDesc {
@@ -205,11 +241,24 @@ struct AreaLightDesc {
   Rgb radiance;
   bool radiance_is_intensity = false;  // 2019 <Intensity> spelling (see README for the convention)
 };
-// Lat-long HDR map on an infinitely distant sphere (CENG795 SphericalDirectionalLight); `element` names the XML
-// element (with its line) for messages about the image.
+// An HDR image on an infinitely distant sphere (CENG795 SphericalDirectionalLight, pbrt-v4 "infinite" with
+// "filename"); `element` names the scene element (with its file and line) for messages about the image.
+//   LatLongYUp  the course's lat-long map (y up; lights/image_infinite_light.h)
+//   LatLongZUp  pbrt-v3's lat-long map: z up, u = phi / 2 pi with phi from +x towards +y, v = theta / pi
+//   EqualArea   pbrt-v4's octahedral equal-area square (z up)
+enum class EnvMapFormat { LatLongYUp, LatLongZUp, EqualArea };
 struct EnvLightDesc {
   std::string image_path;
   std::string element;
+  EnvMapFormat format = EnvMapFormat::LatLongYUp;
+  // EqualArea only: a non-square image (which pbrt-v4 refuses) with a 2:1 aspect is read as LatLongZUp, with a
+  // warning; any other non-square image is an error.
+  bool lat_long_if_not_square = false;
+  Transform light_to_world;  // the map's frame in the world (its linear part)
+  float scale = 1.0f;        // radiance = texel x scale
+  // pbrt's "illuminance" E: the scale is further multiplied by E / k, k the illuminance the map gives a surface
+  // facing the map's +z, computed as pbrt-v4 computes it (renderer/world/environment_map.h).
+  std::optional<float> illuminance;
 };
 // Constant radiance arriving from every direction (pbrt "infinite" light with "L"), seen by rays that escape.
 struct InfiniteLightDesc { Rgb radiance; };
@@ -227,6 +276,7 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;
   std::vector<MeshDesc> meshes;
   std::vector<SphereDesc> spheres;
+  std::vector<QuadricDesc> quadrics;
   std::vector<InstanceDesc> instances;
   Rgb ambient_light{0};
   std::vector<PointLightDesc> point_lights;

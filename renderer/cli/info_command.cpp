@@ -59,8 +59,8 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
     triangles += m.indices.size() / 3;
     if (m.emission) ++emissive;
   }
-  std::printf("meshes: %zu (%zu triangles, %zu emissive), spheres: %zu, instances: %zu\n", s.meshes.size(), triangles,
-              emissive, s.spheres.size(), s.instances.size());
+  std::printf("meshes: %zu (%zu triangles, %zu emissive), spheres: %zu, quadrics: %zu, instances: %zu\n",
+              s.meshes.size(), triangles, emissive, s.spheres.size(), s.quadrics.size(), s.instances.size());
   std::map<std::string, int> brdfs;
   for (const BrdfDesc& b : s.brdfs) ++brdfs[std::string(brdf_name(b.kind)) + (b.normalized ? " (normalized)" : "")];
   std::printf("materials: %zu", s.materials.size());
@@ -74,12 +74,16 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
   std::printf("\ncompiled:");
   for (const auto& [k, v] : ws.compiled_materials) std::printf(" %s x%zu", k.c_str(), v);
   std::printf(
-      "\nlights: ambient %s, point %zu, spot %zu, directional %zu, area %zu, mesh %zu, sphere %zu, env %zu, infinite %zu\n",
+      "\nlights: ambient %s, point %zu, spot %zu, directional %zu, area %zu, mesh %zu, sphere %zu, quadric %zu, env %zu, "
+      "infinite %zu\n",
       s.ambient_light.is_black() ? "off" : "on", ws.point_lights, ws.spot_lights, ws.directional_lights, ws.area_lights,
-      ws.mesh_lights, ws.sphere_lights, s.env_lights.size(), s.infinite_lights.size());
+      ws.mesh_lights, ws.sphere_lights, ws.quadric_lights, s.env_lights.size(), s.infinite_lights.size());
   std::printf("features: %s\n", describe_features(world->features).c_str());
-  std::printf("needs: spheres %s, instances %s, textures %s, cone sampler %s, time sample %s\n",
-              (world->features & kFeatureSpheres) ? "yes" : "no", (world->features & kFeatureInstances) ? "yes" : "no",
+  std::printf("needs: spheres %s, quadrics %s, instances %s, alpha test %s, textures %s, cone sampler %s, "
+              "time sample %s\n",
+              (world->features & kFeatureSpheres) ? "yes" : "no", (world->features & kFeatureQuadrics) ? "yes" : "no",
+              (world->features & kFeatureInstances) ? "yes" : "no",
+              ws.alpha_shapes > 0 ? ("yes (" + std::to_string(ws.alpha_shapes) + " shapes)").c_str() : "no",
               (world->features & kFeatureTextures) ? "yes" : "no", ws.cone_sampler_built ? "yes" : "no",
               ws.moving_shapes > 0 ? ("yes (" + std::to_string(ws.moving_shapes) + " moving shapes)").c_str() : "no");
   if (world->textures) {

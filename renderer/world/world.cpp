@@ -4,7 +4,8 @@
 #include <utility>
 
 #include "core/error.h"
-#include "renderer/image_io/image_io.h"
+#include "renderer/world/alpha_cutouts.h"
+#include "renderer/world/environment_map.h"
 #include "renderer/texture/scene_textures.h"
 #include "scenes/material_mapping.h"
 
@@ -85,15 +86,30 @@ Vec3f shape_motion(World& w, const std::string& name, Vec3f motion, int light) {
   return motion;
 }
 
-// EXR directly, other formats through the OpenImageIO plugin; a file that cannot be read names the scene element.
-Image read_environment_map(const SceneDesc& scene, const EnvLightDesc& env) {
-  try {
-    Image img = read_image(env.image_path);
-    if (img.width() <= 0 || img.height() <= 0) throw Error(env.image_path, "", "the image is empty");
-    return img;
-  } catch (const Error& e) {
-    throw Error(scene.source_path, env.element, std::string("environment map: ") + e.what());
+// A sphere with an alpha cut-out is rendered as a whole-turn quadric sphere: pbrt's (u, v) for its alpha texture.
+QuadricDesc quadric_of_sphere(const SphereDesc& s) {
+  QuadricDesc q;
+  q.name = s.name;
+  q.quadric = *make_quadric(QuadricType::Sphere, s.radius, 0.0f, 0.0f, -s.radius, s.radius, 360.0f).quadric;
+  q.to_world = s.to_world * Transform::translate(s.center);
+  q.material = s.material;
+  q.emission = s.emission;
+  q.motion = s.motion;
+  q.alpha = s.alpha;
+  return q;
+}
+
+// Records a shape's alpha cut-out (shape: its index, about to be added). An emitter keeps its surface opaque: its
+// light samples would otherwise fall into the holes.
+void add_alpha(World& w, uint32_t shape, const ShapeAlphaDesc& alpha, int uvs, const std::string& name, bool emits) {
+  if (!alpha.cuts()) return;
+  if (emits) {
+    w.warnings.push_back(name + ": \"alpha\" on an emitting shape is not rendered; the emitter is opaque");
+    return;
   }
+  if (!w.alpha) w.alpha = std::make_unique<AlphaCutouts>();
+  w.alpha->add(shape, ShapeAlpha{alpha, uvs});
+  w.features |= kFeatureAlpha;
 }
 
 AreaLight make_area_light(const AreaLightDesc& d) {
@@ -170,11 +186,11 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     sd.material = m.material;
     sd.smooth = m.smooth || !m.normals.empty();
     sd.textures = bind_textures(m.textures, m.material, m.to_world);
-    if (sd.textures >= 0 && has_uvs) {
+    if (has_uvs && (sd.textures >= 0 || m.alpha.texture >= 0)) {
       sd.uvs = int(w.uvs.size());
       w.uvs.push_back(take ? std::exchange(take->uvs, {}) : m.uvs);
     }
-    if (take) take->uvs = {};  // only textured shapes read texture coordinates
+    if (take) take->uvs = {};  // only textured shapes and alpha textures read texture coordinates
     if (!m.normals.empty()) {
       std::vector<Vec3f> n = take ? std::exchange(take->normals, {}) : m.normals;
       for (Vec3f& v : n) {
@@ -197,14 +213,23 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     }
     w.stats.triangles += tm.triangle_count();
     ++w.stats.meshes;
+    add_alpha(w, uint32_t(g.shapes.size()), m.alpha, sd.uvs, m.name, sd.light >= 0);
     g.shapes.push_back(Shape{ShapeKind::Mesh, uint32_t(g.meshes.size()), shape_motion(w, m.name, m.motion, sd.light)});
     g.meshes.push_back(std::move(tm));
     w.shape_data.push_back(sd);
     w.features |= kFeatureTriangles;
   }
+  std::vector<QuadricDesc> cut_spheres;
   for (const SphereDesc& s : scene.spheres) {
     check_material(scene, s.material, s.name, s.emission.has_value());
     if (invisible(s.material, s.emission)) continue;
+    if (s.alpha.cuts() && s.radius > 0.0f) {
+      if (!s.emission || s.emission->is_black()) {
+        cut_spheres.push_back(quadric_of_sphere(s));
+        continue;
+      }
+      add_alpha(w, 0, s.alpha, -1, s.name, true);  // warns: the emitter stays opaque
+    }
     ShapeData sd;
     sd.material = s.material;
     sd.textures = bind_textures(s.textures, s.material, s.to_world);
@@ -225,6 +250,27 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   }
   w.stats.spheres = g.spheres.size();
   w.stats.sphere_geometry_built = !g.spheres.empty();
+  const std::vector<QuadricDesc>& spheres_as_quadrics = cut_spheres;
+  for (const std::vector<QuadricDesc>* list : {&scene.quadrics, &spheres_as_quadrics})
+    for (const QuadricDesc& q : *list) {
+      check_material(scene, q.material, q.name, q.emission.has_value());
+      if (invisible(q.material, q.emission)) continue;
+      ShapeData sd;
+      sd.material = q.material;
+      if (q.emission && !q.emission->is_black()) {
+        sd.light = int(w.lights.size());
+        w.lights.emplace_back(QuadricLight(q.quadric, q.to_world, q.flip, *q.emission, q.two_sided_emission));
+        ++w.stats.quadric_lights;
+        w.features |= kFeatureQuadricLights;
+      }
+      add_alpha(w, uint32_t(g.shapes.size()), q.alpha, -1, q.name, sd.light >= 0);
+      g.shapes.push_back(
+          Shape{ShapeKind::Quadric, uint32_t(g.quadrics.size()), shape_motion(w, q.name, q.motion, sd.light)});
+      g.quadrics.push_back(QuadricShape{q.quadric, q.to_world, q.flip});
+      w.shape_data.push_back(sd);
+      w.features |= kFeatureQuadrics;
+    }
+  w.stats.quadrics = g.quadrics.size();
   // Object-space smooth normals for instanced prototypes, shared by all instances of one prototype.
   std::vector<int> prototype_normals(g.prototypes.size(), -2);
   std::vector<int> prototype_uvs(g.prototypes.size(), -1);
@@ -248,7 +294,8 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       w.features |= kFeatureSmoothNormals;
     }
     sd.textures = bind_textures(inst.textures, sd.material, inst.to_world);
-    if (sd.textures >= 0 && !base.uvs.empty() && base.uvs.size() == base.positions.size()) {
+    const bool reads_uvs = sd.textures >= 0 || base.alpha.texture >= 0;
+    if (reads_uvs && !base.uvs.empty() && base.uvs.size() == base.positions.size()) {
       int& pu = prototype_uvs[size_t(proto)];
       if (pu == -1) {
         pu = int(w.uvs.size());
@@ -256,6 +303,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       }
       sd.uvs = pu;
     }
+    add_alpha(w, uint32_t(g.shapes.size()), base.alpha, sd.uvs, inst.name, false);
     g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w, inst.name, inst.motion, -1)});
     g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
     w.shape_data.push_back(sd);
@@ -263,6 +311,11 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     w.features |= kFeatureInstances;
   }
   w.stats.instances = g.instances.size();
+  if (w.alpha) {
+    g.alpha = AlphaTest{&AlphaCutouts::opacity, &w};
+    for (uint32_t i = 0; i < g.shapes.size(); ++i) g.shapes[i].alpha = w.alpha->has(i);
+    w.stats.alpha_shapes = w.alpha->size();
+  }
 
   const Bounds3f bounds = g.bounds();
   w.scene_radius = bounds.empty() ? 1.0f : std::max(0.5f * bounds.extent(), 1e-6f);
@@ -294,7 +347,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   }
   for (const EnvLightDesc& l : scene.env_lights) {
     w.infinite_lights.push_back(int(w.lights.size()));
-    w.lights.emplace_back(ImageInfiniteLight(read_environment_map(scene, l), w.scene_radius, options.env_map_sampling));
+    w.lights.emplace_back(make_environment_light(scene, l, w.scene_radius, options.env_map_sampling, w.warnings));
     ++w.stats.environment_maps;
     w.features |= kFeatureInfiniteLights | kFeatureEnvironmentMap;
   }

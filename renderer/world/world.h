@@ -19,6 +19,7 @@
 namespace kiln {
 
 class SceneTextures;
+class AlphaCutouts;
 
 struct ShapeData {
   int material = -1;
@@ -30,10 +31,11 @@ struct ShapeData {
 };
 
 struct WorldStats {
-  size_t meshes = 0, triangles = 0, spheres = 0, instances = 0;
+  size_t meshes = 0, triangles = 0, spheres = 0, instances = 0, quadrics = 0;
+  size_t alpha_shapes = 0;   // shapes with an alpha cut-out (the accelerators test their opacity)
   size_t moving_shapes = 0;  // MotionBlur: shapes built as time-varying geometry
   size_t point_lights = 0, spot_lights = 0, directional_lights = 0, area_lights = 0, mesh_lights = 0,
-         sphere_lights = 0, infinite_lights = 0, environment_maps = 0;
+         sphere_lights = 0, quadric_lights = 0, infinite_lights = 0, environment_maps = 0;
   size_t materials = 0;
   std::map<std::string, size_t> compiled_materials;  // Material::describe() -> how many materials compiled to it
   size_t interface_shapes = 0;  // shapes left out because their material only marks a boundary (pbrt "interface")
@@ -49,6 +51,7 @@ struct World {
   std::vector<std::vector<Vec3f>> normals;      // smooth per-vertex normals
   std::vector<std::vector<Vec2f>> uvs;          // per-vertex texture coordinates of textured meshes
   std::unique_ptr<SceneTextures> textures;      // only for scenes with textures (renderer/texture/scene_textures.h)
+  std::unique_ptr<AlphaCutouts> alpha;          // only for scenes with alpha cut-outs (renderer/world/alpha_cutouts.h)
   std::vector<Material> materials;
   std::vector<Light> lights;
   std::vector<int> infinite_lights;  // indices into lights of what rays that leave the scene see
@@ -63,7 +66,7 @@ struct World {
   std::vector<std::string> warnings;  // found while building (e.g. degenerate lights left out)
 
   World();
-  ~World();  // out of line: SceneTextures is incomplete here
+  ~World();  // out of line: SceneTextures and AlphaCutouts are incomplete here
 };
 
 struct WorldOptions {

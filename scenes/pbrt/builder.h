@@ -4,6 +4,7 @@
 // (scenes/pbrt/lights.cpp), each written into the SceneDesc. Shapes and cameras are made by scenes/pbrt/shapes.h and
 // scenes/pbrt/camera.h. Everything a builder cannot render is reported through PbrtDiagnostics.
 #pragma once
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -28,17 +29,29 @@ struct PbrtAreaLight {
   bool two_sided = false;
 };
 
+// A float "imagemap" texture as shapes' "alpha" reads it (scenes/pbrt/alpha.cpp): the image as a SceneDesc texture
+// (added when a shape first uses it) and the pbrt lookup around it.
+struct PbrtFloatImage {
+  TextureDesc texture;
+  AlphaImageDesc lookup;
+  int scene_texture = -1;  // index into SceneDesc::textures once added
+};
+
 // A named texture (Texture directive).
 struct PbrtTextureDef {
   bool is_float = false;
   std::string cls;
   std::optional<float> value;  // constant float texture
   std::optional<Rgb> rgb;      // constant spectrum texture
+  std::optional<PbrtFloatImage> float_image;  // float imagemap
 };
+
+// A file named in the scene, resolved as Include resolves it (a missing file throws, naming the file and line).
+using PbrtResolver = std::function<std::string(const std::string& name, const PbrtParams& ps)>;
 
 class PbrtBuilder {
  public:
-  explicit PbrtBuilder(SceneDesc& scene) : scene_(scene), diag_(scene) {}
+  PbrtBuilder(SceneDesc& scene, PbrtResolver resolve) : scene_(scene), diag_(scene), resolve_(std::move(resolve)) {}
   PbrtBuilder(const PbrtBuilder&) = delete;
   PbrtBuilder& operator=(const PbrtBuilder&) = delete;
 
@@ -56,6 +69,10 @@ class PbrtBuilder {
   // Textures (scenes/pbrt/textures.cpp).
   void make_texture(const std::string& name, const std::string& type, const std::string& cls, const PbrtParams& ps);
 
+  // A shape's "alpha" (scenes/pbrt/alpha.cpp): a float, or a float texture (constant or imagemap); other texture
+  // classes are warned and the shape kept opaque. A missing texture or a spectrum texture throws.
+  ShapeAlphaDesc shape_alpha(const PbrtParams& ps);
+
   // Lights (scenes/pbrt/lights.cpp). light_to_world: the transform in effect at the directive.
   void make_light(const std::string& type, const PbrtParams& ps, const Transform& light_to_world);
   // AreaLightSource: what the shapes that follow emit; empty for area lights Kiln does not render (warned).
@@ -69,13 +86,17 @@ class PbrtBuilder {
   void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex,
                             const PbrtTextureDef& t);
   void read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm);
+  PbrtFloatImage read_float_image(const std::string& name, const PbrtParams& ps);
   float interface_eta(const PbrtParams& ps);
 
   Rgb light_spectrum(const PbrtParams& ps, const std::string& name);
-  void infinite_light(const PbrtParams& ps, float scale);
+  void infinite_light(const PbrtParams& ps, float scale, const Transform& light_to_world);
+  void image_infinite_light(const PbrtParams& ps, const std::string& file, float scale,
+                            const Transform& light_to_world);
 
   SceneDesc& scene_;
   PbrtDiagnostics diag_;
+  PbrtResolver resolve_;
   std::map<std::string, int> named_materials_;
   std::map<std::string, PbrtTextureDef> textures_;
   int default_material_ = -1;

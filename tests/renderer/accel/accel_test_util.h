@@ -80,6 +80,12 @@ inline uint32_t add_instance(WorldGeometry& g, uint32_t prototype, Transform to_
   return uint32_t(g.shapes.size() - 1);
 }
 
+inline uint32_t add_quadric(WorldGeometry& g, const Quadric& q, Transform to_world = {}, bool flip = false) {
+  g.quadrics.push_back({q, to_world, flip});
+  g.shapes.push_back({ShapeKind::Quadric, uint32_t(g.quadrics.size() - 1)});
+  return uint32_t(g.shapes.size() - 1);
+}
+
 inline Vec3f random_in(Rng& rng, const Bounds3f& b) {
   return b.lo + b.diagonal() * Vec3f(rng.next_float(), rng.next_float(), rng.next_float());
 }

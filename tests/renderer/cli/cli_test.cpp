@@ -235,9 +235,9 @@ TEST(Cli, PbrtSceneRendersAndEveryCommandReadsIt) {
 
   const RunResult info = run_kiln("info " + data + "unsupported.pbrt");
   EXPECT_EQ(info.exit_code, 0) << info.output;
-  EXPECT_NE(info.output.find("warning: " + data + "unsupported.pbrt: line 15 (Shape \"disk\")"), std::string::npos)
+  EXPECT_NE(info.output.find("warning: " + data + "unsupported.pbrt: line 15 (Shape \"curve\")"), std::string::npos)
       << info.output;
-  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"disk\""), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"curve\""), std::string::npos) << info.output;
   const RunResult all = run_kiln("info " + data + "all_directives.pbrt");
   EXPECT_NE(all.output.find("infinite 1"), std::string::npos) << all.output;
 

@@ -578,9 +578,9 @@ TEST(PbrtWarnings, EveryUnsupportedFeatureIsNamedWithFileAndLine) {
       {f + "line 12 (Material \"diffuse\")", "texture \"checks\""},
       {f + "line 13 (Shape \"trianglemesh\")", "\"float bogus\" is not used"},
       {f + "line 14 (Material \"hair\")", "not supported"},
-      {f + "line 15 (Shape \"disk\")", "not supported"},
-      {f + "line 16 (Shape \"sphere\")", "partial spheres"},
-      {f + "line 17 (Shape \"trianglemesh\")", "alpha"},
+      {f + "line 15 (Shape \"curve\")", "not supported"},
+      {f + "line 16 (Shape \"cone\")", "pbrt-v3 shape"},
+      {f + "line 17 (LightSource \"projection\")", "not supported"},
       {f + "line 18 (Shape \"bilinearmesh\")", "not planar"},
       {f + "line 19 (LightSource \"goniometric\")", "not supported"},
       {f + "line 21 (AreaLightSource \"diffuse\")", "\"power\" is not supported"},
@@ -591,7 +591,7 @@ TEST(PbrtWarnings, EveryUnsupportedFeatureIsNamedWithFileAndLine) {
   for (const auto& [where, what] : expected)
     EXPECT_TRUE(has_warning(s, where, what)) << where << " " << what << "\n" << all_warnings(s);
   EXPECT_EQ(s.warnings.size(), std::size(expected)) << all_warnings(s);
-  for (const char* feature : {"textures", "participating media", "pbrt shape \"disk\"", "motion blur"}) {
+  for (const char* feature : {"textures", "participating media", "pbrt shape \"curve\"", "motion blur"}) {
     bool found = false;
     for (const std::string& u : s.unsupported) found |= u.find(feature) != std::string::npos;
     EXPECT_TRUE(found) << feature;
