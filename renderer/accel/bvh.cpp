@@ -331,8 +331,9 @@ struct Bvh::Impl {
   }
 
   // Closest hit (kAny = false) or any hit (kAny = true) in tree with t in [ray.tmin, tmax]; tmax shrinks as
-  // closer hits are found. shape_override names the instance shape when traversing a prototype tree.
-  template <bool kAny>
+  // closer hits are found. shape_override names the instance shape when traversing a prototype tree. kAlpha: the
+  // scene has alpha cut-outs (compiled out of the triangle leaves of scenes without).
+  template <bool kAny, bool kAlpha>
   bool traverse(const Tree& tree, const TravRay& r, float& tmax, Closest& best, uint32_t shape_override) const {
     if (tree.empty()) return false;
     struct Entry {
@@ -391,7 +392,7 @@ struct Bvh::Impl {
         ref = hits[0].ref;
       }
       if (!descend) continue;
-      if (leaf<kAny>(tree, ref, r, tmax, best, shape_override)) {
+      if (leaf<kAny, kAlpha>(tree, ref, r, tmax, best, shape_override)) {
         if constexpr (kAny) return true;
         found = true;
       }
@@ -399,14 +400,14 @@ struct Bvh::Impl {
     return found;
   }
 
-  template <bool kAny>
+  template <bool kAny, bool kAlpha>
   bool leaf(const Tree& tree, ChildRef ref, const TravRay& r, float& tmax, Closest& best,
             uint32_t shape_override) const {
     const uint32_t first = ref_first(ref), count = ref_count(ref);
     bool found = false;
     if (ref & kOtherBit) [[unlikely]] {
       for (uint32_t i = first; i < first + count; ++i) {
-        if (other_prim<kAny>(tree.refs[i], r, tmax, best)) {
+        if (other_prim<kAny, kAlpha>(tree.refs[i], r, tmax, best)) {
           if constexpr (kAny) return true;
           found = true;
         }
@@ -416,7 +417,9 @@ struct Bvh::Impl {
     for (uint32_t p = first; p < first + count; ++p) {
       alignas(16) float t[4], b1[4], b2[4];
       int mask = intersect_tri4(tree.packets[p], r.wr, r.tmin, tmax, t, b1, b2);
-      if (mask && g.alpha.opacity) mask = alpha_lanes(tree, tree.packets[p], mask, r, b1, b2, shape_override);
+      if constexpr (kAlpha) {
+        if (mask) mask = alpha_lanes(tree, tree.packets[p], mask, r, b1, b2, shape_override);
+      }
       if (!mask) continue;
       if constexpr (kAny) return true;
       int lane = __builtin_ctz(unsigned(mask));
@@ -447,13 +450,13 @@ struct Bvh::Impl {
 
   // A sphere, a quadric, an instance (whose prototype tree is traversed with the ray in object space) or a moving
   // mesh (its tree traversed with the ray moved back by the mesh's offset at the ray's time).
-  template <bool kAny>
+  template <bool kAny, bool kAlpha>
   bool other_prim(const PrimRef ref, const TravRay& r, float& tmax, Closest& best) const {
     const Shape& shape = g.shapes[ref.shape];
     const Vec3f origin = shape.moving() ? r.o - shape.offset_at(r.time) : r.o;
     if (ref_kind(ref) == kKindMovingMesh) {
       const TravRay back(Ray{origin, r.d, r.tmin, tmax, r.time}, r.world);
-      return traverse<kAny>(moving_meshes[ref_index(ref)], back, tmax, best, ref.shape);
+      return traverse<kAny, kAlpha>(moving_meshes[ref_index(ref)], back, tmax, best, ref.shape);
     }
     if (ref_kind(ref) == kKindSphere) {
       const uint32_t si = ref_index(ref);
@@ -482,7 +485,7 @@ struct Bvh::Impl {
     Vec3f o = origin, d = r.d;
     to_object_space(instance_to_object[ii], o, d);
     const TravRay obj(Ray{o, d, r.tmin, tmax, r.time}, r.world);
-    return traverse<kAny>(prototypes[g.instances[ii].prototype], obj, tmax, best, ref.shape);
+    return traverse<kAny, kAlpha>(prototypes[g.instances[ii].prototype], obj, tmax, best, ref.shape);
   }
 };
 
@@ -496,7 +499,10 @@ bool Bvh::intersect(const Ray& ray, Hit& hit) const {
   if (!traceable(ray)) return false;
   float tmax = ray.tmax;
   Closest best{ray.tmax};
-  if (!impl_->traverse<false>(impl_->world, TravRay(ray, &ray), tmax, best, kInvalidId)) return false;
+  const TravRay r(ray, &ray);
+  const bool found = impl_->g.alpha.opacity ? impl_->traverse<false, true>(impl_->world, r, tmax, best, kInvalidId)
+                                            : impl_->traverse<false, false>(impl_->world, r, tmax, best, kInvalidId);
+  if (!found) return false;
   const WorldGeometry& g = impl_->g;
   hit.t = best.t;
   hit.shape = best.shape;
@@ -527,7 +533,9 @@ bool Bvh::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   float tmax = ray.tmax;
   Closest unused{ray.tmax};
-  return impl_->traverse<true>(impl_->world, TravRay(ray, &ray), tmax, unused, kInvalidId);
+  const TravRay r(ray, &ray);
+  return impl_->g.alpha.opacity ? impl_->traverse<true, true>(impl_->world, r, tmax, unused, kInvalidId)
+                                : impl_->traverse<true, false>(impl_->world, r, tmax, unused, kInvalidId);
 }
 
 AccelStats Bvh::stats() const { return {"bvh", impl_->stats.build_seconds, impl_->stats.bytes}; }

@@ -17,8 +17,9 @@
 // Ray conventions are Embree's: hits with t in [ray.tmin, ray.tmax] (no epsilon), triangles tested with the
 // watertight test of triangle_intersect.h, spheres with sphere_intersect.h, quadrics with quadric_intersect.h,
 // Hit::ng from surface_point.h; rays that Embree would reject (traceable_ray.h) miss. Alpha cut-outs: a triangle
-// packet's lanes on shapes with alpha are filtered through renderer/accel/alpha.h (scenes without alpha skip it
-// with one test per packet hit), quadrics test it on each root.
+// packet's lanes on shapes with alpha are filtered through renderer/accel/alpha.h in a traversal instantiated for
+// scenes with alpha only (scenes without take the other instantiation, one branch per query); quadrics test it on
+// each root.
 #pragma once
 #include <memory>
 #include <optional>

@@ -30,13 +30,18 @@ struct SphereData {
   Vec3f motion{0.0f};
 };
 
-void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
-  const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
-  Bounds3f b = sphere_world_bounds(*s->shape);
-  const Vec3f offset = s->motion * float(args->timeStep);  // time steps 0 and 1 are the shutter's ends
+// A user geometry's bounds at a time step: its time-0 bounds moved by its motion (time steps 0 and 1 are the
+// shutter's ends).
+void store_bounds(const RTCBoundsFunctionArguments* args, Bounds3f b, Vec3f motion) {
+  const Vec3f offset = motion * float(args->timeStep);
   b.lo += offset;
   b.hi += offset;
   *args->bounds_o = RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
+}
+
+void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
+  const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
+  store_bounds(args, sphere_world_bounds(*s->shape), s->motion);
 }
 
 inline void sphere_object_ray(const SphereData& s, Vec3f& o, Vec3f& d) {
@@ -110,11 +115,7 @@ struct QuadricData {
 
 void quadric_bounds_cb(const RTCBoundsFunctionArguments* args) {
   const auto* q = static_cast<const QuadricData*>(args->geometryUserPtr);
-  Bounds3f b = quadric_world_bounds(*q->quadric);
-  const Vec3f offset = q->motion * float(args->timeStep);
-  b.lo += offset;
-  b.hi += offset;
-  *args->bounds_o = RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
+  store_bounds(args, quadric_world_bounds(*q->quadric), q->motion);
 }
 
 // Lane i of a ray packet against the quadric (object space), its alpha test included.
@@ -251,6 +252,20 @@ struct EmbreeAccel::Impl {
     return geom;
   }
 
+  // One primitive computed by callbacks on `data`; a moving one has the shutter's two time steps.
+  RTCGeometry user_geometry(void* data, bool moving, RTCBoundsFunction bounds, RTCIntersectFunctionN intersect,
+                            RTCOccludedFunctionN occluded) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    if (moving) rtcSetGeometryTimeStepCount(geom, 2);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, data);
+    rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, intersect);
+    rtcSetGeometryOccludedFunction(geom, occluded);
+    rtcCommitGeometry(geom);
+    return geom;
+  }
+
   RTCScene new_scene() {
     RTCScene s = rtcNewScene(device);
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
@@ -287,25 +302,12 @@ struct EmbreeAccel::Impl {
       } else if (s.kind == ShapeKind::Sphere) {
         const SphereShape& sph = geometry.spheres[s.index];
         sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse(), s.motion});
-        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        if (s.moving()) rtcSetGeometryTimeStepCount(geom, 2);
-        rtcSetGeometryUserPrimitiveCount(geom, 1);
-        rtcSetGeometryUserData(geom, &sphere_data.back());
-        rtcSetGeometryBoundsFunction(geom, sphere_bounds_cb, nullptr);
-        rtcSetGeometryIntersectFunction(geom, sphere_intersect_cb);
-        rtcSetGeometryOccludedFunction(geom, sphere_occluded_cb);
-        rtcCommitGeometry(geom);
+        geom = user_geometry(&sphere_data.back(), s.moving(), sphere_bounds_cb, sphere_intersect_cb, sphere_occluded_cb);
       } else if (s.kind == ShapeKind::Quadric) {
         const QuadricShape& q = geometry.quadrics[s.index];
         quadric_data.push_back({&geometry, id, &q, q.to_world.inverse(), s.motion, s.alpha});
-        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        if (s.moving()) rtcSetGeometryTimeStepCount(geom, 2);
-        rtcSetGeometryUserPrimitiveCount(geom, 1);
-        rtcSetGeometryUserData(geom, &quadric_data.back());
-        rtcSetGeometryBoundsFunction(geom, quadric_bounds_cb, nullptr);
-        rtcSetGeometryIntersectFunction(geom, quadric_intersect_cb);
-        rtcSetGeometryOccludedFunction(geom, quadric_occluded_cb);
-        rtcCommitGeometry(geom);
+        geom = user_geometry(&quadric_data.back(), s.moving(), quadric_bounds_cb, quadric_intersect_cb,
+                             quadric_occluded_cb);
       } else {
         const MeshInstance& inst = geometry.instances[s.index];
         if (geometry.prototypes[inst.prototype].triangle_count() == 0) continue;

@@ -87,22 +87,34 @@ TEST(ImageInfiniteLight, CourseUniformHemisphereMatchesPdfChi2) {
   EXPECT_EQ(light.pdf_direction(LightQuery{{}, {0, 0, 1}}, {0, 0, -1}), 0.0f);
 }
 
-TEST(ImageInfiniteLight, SamplesAgreeWithPdfLiAndEscapedRadiance) {
-  for (EnvMapSampling mode : {EnvMapSampling::ImportanceSampled, EnvMapSampling::UniformHemisphere}) {
-    const ImageInfiniteLight light(test_map(), kSceneRadius, mode);
-    const LightQuery q{{0.3f, -1.0f, 2.0f}, normalize(Vec3f{0.4f, -0.3f, 0.8f})};
-    Rng rng(11, 3);
-    for (int i = 0; i < 2000; ++i) {
-      const auto s = light.sample_li(q, rng.next_2d());
-      if (!s) continue;
-      EXPECT_NEAR(length(s->wi), 1.0f, 1e-5f);
-      EXPECT_FALSE(s->delta);
-      EXPECT_EQ(light.radiance(s->wi), s->li);
-      EXPECT_NEAR(s->distance, 2.0f * kSceneRadius, 1e-5f);
-      EXPECT_NEAR(light.pdf_li(q, s->p_light, {}, 0), s->pdf, 1e-3f * s->pdf);
-      EXPECT_NEAR(light.pdf_direction(q, s->wi), s->pdf, 1e-5f * s->pdf);
-    }
+// Samples from a tilted query: unit directions carrying the escaped radiance, at the shadow-target distance, with the
+// density pdf_li and pdf_direction give them.
+void expect_samples_agree(const ImageInfiniteLight& light, uint64_t seed) {
+  const LightQuery q{{0.3f, -1.0f, 2.0f}, normalize(Vec3f{0.4f, -0.3f, 0.8f})};
+  Rng rng(seed, 3);
+  for (int i = 0; i < 2000; ++i) {
+    const auto s = light.sample_li(q, rng.next_2d());
+    if (!s) continue;
+    EXPECT_NEAR(length(s->wi), 1.0f, 1e-5f);
+    EXPECT_FALSE(s->delta);
+    EXPECT_EQ(light.radiance(s->wi), s->li);
+    EXPECT_NEAR(s->distance, 2.0f * kSceneRadius, 1e-5f);
+    EXPECT_NEAR(light.pdf_li(q, s->p_light, {}, 0), s->pdf, 1e-3f * s->pdf);
+    EXPECT_NEAR(light.pdf_direction(q, s->wi), s->pdf, 1e-5f * s->pdf);
   }
+}
+
+// The one-sample irradiance estimate at a tilted normal (a constant map L gives pi L).
+test::Estimate irradiance(const ImageInfiniteLight& light) {
+  const LightQuery q{{0, 0, 0}, normalize(Vec3f{-0.2f, 0.5f, 0.6f})};
+  return estimate(
+      [&](Rng& rng) { return irradiance_sample([&](auto& qq, Vec2f u) { return light.sample_li(qq, u); }, q, rng); },
+      400000, 3);
+}
+
+TEST(ImageInfiniteLight, SamplesAgreeWithPdfLiAndEscapedRadiance) {
+  for (EnvMapSampling mode : {EnvMapSampling::ImportanceSampled, EnvMapSampling::UniformHemisphere})
+    expect_samples_agree(ImageInfiniteLight(test_map(), kSceneRadius, mode), 11);
 }
 
 TEST(ImageInfiniteLight, ConstantMapGivesIrradiancePiL) {
@@ -110,11 +122,7 @@ TEST(ImageInfiniteLight, ConstantMapGivesIrradiancePiL) {
   Image img(kW, kH);
   for (Rgb& c : img.pixels()) c = Rgb(kL);
   for (EnvMapSampling mode : {EnvMapSampling::ImportanceSampled, EnvMapSampling::UniformHemisphere}) {
-    const ImageInfiniteLight light(img, kSceneRadius, mode);
-    const LightQuery q{{0, 0, 0}, normalize(Vec3f{-0.2f, 0.5f, 0.6f})};
-    const auto e = estimate(
-        [&](Rng& rng) { return irradiance_sample([&](auto& qq, Vec2f u) { return light.sample_li(qq, u); }, q, rng); },
-        400000, 3);
+    const auto e = irradiance(ImageInfiniteLight(img, kSceneRadius, mode));
     EXPECT_EQ(e.invalid, 0);
     EXPECT_TRUE(within_error(e, test::kPiD * kL)) << int(mode) << ": " << e.mean << " +- " << e.std_error;
   }
@@ -202,15 +210,7 @@ TEST(ImageInfiniteLight, EqualAreaPdfIntegratesToOneAndFollowsRadiance) {
 TEST(ImageInfiniteLight, EqualAreaSamplesAgreeWithPdfLiAndRadianceUnderAPlacement) {
   const auto placement = equal_area_placements()[1].second;
   const ImageInfiniteLight light(square_map(), kSceneRadius, EnvMapSampling::ImportanceSampled, placement);
-  const LightQuery q{{0.3f, -1.0f, 2.0f}, normalize(Vec3f{0.4f, -0.3f, 0.8f})};
-  Rng rng(12, 5);
-  for (int i = 0; i < 2000; ++i) {
-    const auto s = light.sample_li(q, rng.next_2d());
-    if (!s) continue;
-    EXPECT_NEAR(length(s->wi), 1.0f, 1e-5f);
-    EXPECT_EQ(light.radiance(s->wi), s->li);
-    EXPECT_NEAR(light.pdf_li(q, s->p_light, {}, 0), s->pdf, 1e-3f * s->pdf);
-  }
+  expect_samples_agree(light, 12);
   // The map's +z (its centre texel) is where the placement sends it.
   const Vec3f up = placement.light_to_world.vector({0, 0, 1});
   EXPECT_EQ(light.radiance(normalize(up)), square_map().at(kSquare / 2, kSquare / 2));
@@ -222,10 +222,7 @@ TEST(ImageInfiniteLight, ConstantEqualAreaMapGivesIrradiancePiL) {
   for (Rgb& c : img.pixels()) c = Rgb(kL);
   const ImageInfiniteLight light(img, kSceneRadius, EnvMapSampling::ImportanceSampled,
                                  equal_area_placements()[1].second);
-  const LightQuery q{{0, 0, 0}, normalize(Vec3f{-0.2f, 0.5f, 0.6f})};
-  const auto e = estimate(
-      [&](Rng& rng) { return irradiance_sample([&](auto& qq, Vec2f u) { return light.sample_li(qq, u); }, q, rng); },
-      400000, 3);
+  const auto e = irradiance(light);
   EXPECT_EQ(e.invalid, 0);
   EXPECT_TRUE(within_error(e, test::kPiD * kL)) << e.mean << " +- " << e.std_error;
   EXPECT_NEAR(light.power(), 4.0 * test::kPiD * test::kPiD * kSceneRadius * kSceneRadius * kL, 1e-2);

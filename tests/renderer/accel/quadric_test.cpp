@@ -125,12 +125,7 @@ TEST(CheckBvh, AgreesOnMovingQuadricsAtEveryInstant) {
   WorldGeometry g = quadric_scene();
   for (size_t i = 1; i < g.shapes.size(); ++i) g.shapes[i].motion = Vec3f(0.3f * float(i) - 1.0f, 0.2f, 0.5f);
   g.has_motion = true;
-  const auto timed_ray = [](size_t i, Rng& rng) {
-    Ray r = camera_ray(i, rng);
-    r.time = rng.next_float();
-    return r;
-  };
-  const CheckBvhReport r = check_bvh(g, timed_ray, CheckBvhOptions{});
+  const CheckBvhReport r = check_bvh(g, at_random_instants(camera_ray), CheckBvhOptions{});
   EXPECT_TRUE(r.passed) << r.to_json();
   EXPECT_EQ(r.total_disagreements(), 0u) << r.first_disagreement;
 }

@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "renderer/image_io/image_io.h"
-#include "renderer/render_util.h"
+#include "renderer/test_scenes.h"
 
 namespace kiln::test {
 namespace {
@@ -26,22 +26,12 @@ constexpr float kOccluderHeight = kLightHeight - 0.01f;
 constexpr float kShrink = kOccluderHeight / kLightHeight;
 constexpr double kMaxZ = 5.0;
 
-// Irradiance at a point from a parallel rectangle a x b at height h with its corner straight above the point (Howell
-// C-11, times pi L).
-double corner_rectangle_irradiance(double a, double b, double h) {
-  const double x = a / h, y = b / h;
-  const double f = (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
-                    y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
-                   (2 * kPiD);
-  return kPiD * kL * f;
-}
-
 // The irradiance at the origin from the part [x0, x1] x [z0, z1] of the light's plane: the corner rectangles from
 // the point straight above the origin, signed, by inclusion and exclusion.
 double rect_irradiance(double x0, double x1, double z0, double z1) {
   const auto g = [](double x, double z) {
     const double sign = (x < 0 ? -1.0 : 1.0) * (z < 0 ? -1.0 : 1.0);
-    return sign * corner_rectangle_irradiance(std::abs(x), std::abs(z), kLightHeight);
+    return sign * corner_rectangle_irradiance(kL, std::abs(x), std::abs(z), kLightHeight);
   };
   return g(x1, z1) - g(x0, z1) - g(x1, z0) + g(x0, z0);
 }
@@ -62,28 +52,14 @@ MeshDesc square(const std::string& name, Vec3f c, float size, int material) {
 // Floor (material 0, albedo kAlbedo), the unit square light at kLightHeight facing down, a black occluder
 // (material 1) of side `occluder_size` centred at `occluder`.
 SceneDesc lit_floor(Vec3f occluder, float occluder_size) {
-  SceneDesc s = lambertian_scene(kAlbedo, "alpha.test");
+  SceneDesc s = lit_floor_scene(kAlbedo, "alpha.test");
   MaterialDesc black = s.materials[0];
   black.diffuse = Rgb(0.0f);
   s.materials.push_back(black);
-  MeshDesc floor;
-  floor.name = "floor";
-  floor.positions = {{-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}};
-  floor.indices = {0, 1, 2, 0, 2, 3};
-  floor.material = 0;
-  s.meshes.push_back(floor);
   MeshDesc light = square("light", {kLightX, kLightHeight, kLightZ}, 1.0f, 0);
   light.emission = Rgb(kL);
   s.meshes.push_back(light);
   s.meshes.push_back(square("occluder", occluder, occluder_size, 1));
-  CameraDesc cam;
-  cam.position = {0.0f, 3.0f, 3.0f};
-  cam.gaze = normalize(Vec3f{0.0f, -3.0f, -3.0f});
-  cam.up = {0, 1, 0};
-  cam.use_fov = true;
-  cam.fov_y_deg = 0.05f;
-  cam.width = cam.height = 4;
-  s.cameras.push_back(cam);
   return s;
 }
 

@@ -10,7 +10,7 @@
 #include "core/equal_area.h"
 #include "core/error.h"
 #include "renderer/image_io/image_io.h"
-#include "renderer/render_util.h"
+#include "renderer/test_scenes.h"
 #include "renderer/world/environment_map.h"
 
 namespace kiln::test {
@@ -42,18 +42,8 @@ EnvLightDesc pbrt_map(const std::string& path) {
 }
 
 SceneDesc ball_under(const EnvLightDesc& env) {
-  SceneDesc s = lambertian_scene(kAlbedo, "env.pbrt");
-  SphereDesc ball;
-  ball.name = "ball";
-  ball.material = 0;
-  s.spheres.push_back(ball);
+  SceneDesc s = ball_scene(kAlbedo, "env.pbrt");
   s.env_lights.push_back(env);
-  CameraDesc cam;
-  cam.position = {0, 0, 3};
-  cam.use_fov = true;
-  cam.fov_y_deg = 20;
-  cam.width = cam.height = 8;
-  s.cameras.push_back(cam);
   return s;
 }
 

@@ -9,43 +9,25 @@
 // is measured in the README (pbrt-v4 differences).
 #include <gtest/gtest.h>
 
-#include "renderer/analysis/image_compare.h"
-#include "renderer/film/pixel_filter.h"
-#include "renderer/image_io/image_io.h"
-#include "renderer/render_util.h"
+#include "renderer/pbrt_reference_util.h"
 #include "support/shared_data.h"
 
 namespace kiln::test {
 namespace {
 
-constexpr int kBlock = 16;
 constexpr double kMedianLimit = 0.02;
 constexpr double kP95Limit = 0.08;
 constexpr double kMeanRatioLimit = 0.02;
 
 std::string features(const std::string& rel) { return shared_dir() + "/scenes/pbrt/features/" + rel; }
 
-BlockStats render_against_reference(const std::string& name, uint32_t spp, uint64_t seed) {
-  const SceneDesc scene = load_scene(features(name + ".pbrt"));
-  const auto world = build_scene_world(scene);
-  const CameraDesc& cd = scene.cameras.at(0);
-  const Camera cam(cd);
-  Film film(cam.width(), cam.height());
-  RenderOptions ro;
-  ro.seed = seed;
-  ro.spp_total = spp;
-  ro.filter = pixel_filter_for(cd, std::nullopt);
-  render_samples(*world, cam, scene_settings(cd, scene, world->features), ro, 0, spp, film);
-  const Image reference = read_exr(features("reference/" + name + ".exr")).rgb;
-  const BlockStats st = block_luminance_stats(film.mean(), reference, kBlock);
-  std::cout << name << " vs pbrt-v4, " << spp << " spp, " << kBlock << "-px blocks: median " << st.median_rel
-            << ", p95 " << st.p95_rel << ", mean ratio " << st.mean_ratio << " over " << st.blocks << " blocks\n";
-  return st;
+BlockStats feature_scene_against_pbrt(const std::string& name, uint32_t spp, uint64_t seed) {
+  return render_against_reference(name, features(name + ".pbrt"), features("reference/" + name + ".exr"), spp, seed);
 }
 
 TEST(PbrtFeatureScenes, EnvEquiareaMatchesPbrtV4) {
   KILN_NEED_SHARED_PATH(features("env-equiarea.pbrt"));
-  const BlockStats st = render_against_reference("env-equiarea", 16, 3);
+  const BlockStats st = feature_scene_against_pbrt("env-equiarea", 16, 3);
   EXPECT_EQ(st.left_out.image, 0u) << "pixels that are not finite";
   EXPECT_LT(st.median_rel, kMedianLimit);
   EXPECT_LT(st.p95_rel, kP95Limit);

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <functional>
 
-#include "renderer/render_util.h"
+#include "renderer/test_scenes.h"
 
 namespace kiln::test {
 namespace {
@@ -16,26 +16,6 @@ constexpr double kPiD = 3.14159265358979323846;
 constexpr float kAlbedo = 0.5f;
 constexpr float kL = 2.0f;
 constexpr double kMaxZ = 5.0;
-
-// A Lambertian floor (y = 0, normal +y) seen at the origin by a narrow camera from +z.
-SceneDesc floor_scene() {
-  SceneDesc s = lambertian_scene(kAlbedo);
-  MeshDesc floor;
-  floor.name = "floor";
-  floor.positions = {{-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}};
-  floor.indices = {0, 1, 2, 0, 2, 3};
-  floor.material = 0;
-  s.meshes.push_back(floor);
-  CameraDesc cam;
-  cam.position = {0.0f, 3.0f, 3.0f};
-  cam.gaze = normalize(Vec3f{0.0f, -3.0f, -3.0f});
-  cam.up = {0, 1, 0};
-  cam.use_fov = true;
-  cam.fov_y_deg = 0.05f;
-  cam.width = cam.height = 4;
-  s.cameras.push_back(cam);
-  return s;
-}
 
 QuadricDesc emitter(QuadricType type, float r, float inner, float z0, float z1, float phi, Transform xf, bool flip) {
   QuadricDesc q;
@@ -79,7 +59,7 @@ std::vector<Case> cases() {
 
 TEST(QuadricLights, LambertianFloorMatchesTheClosedFormUnderEveryStrategy) {
   for (const Case& c : cases()) {
-    SceneDesc s = floor_scene();
+    SceneDesc s = lit_floor_scene(kAlbedo);
     s.quadrics.push_back(c.light);
     const auto w = build_world(s, {});
     ASSERT_TRUE(w->features & kFeatureQuadricLights);
