@@ -96,11 +96,11 @@ void sphere_occluded_cb(const RTCOccludedFunctionNArguments* args) {
 // ray is in object space).
 struct QueryContext {
   RTCIntersectContext rtc;  // first member: Embree's pointer to it is a pointer to the whole
-  Ray world_ray;
+  const Ray* world_ray;     // the caller's, alive for the query
 };
 
 const Ray& world_ray_of(const RTCIntersectContext* context) {
-  return reinterpret_cast<const QueryContext*>(context)->world_ray;
+  return *reinterpret_cast<const QueryContext*>(context)->world_ray;
 }
 
 // What a quadric's user-geometry callbacks need (as SphereData).
@@ -373,7 +373,7 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
   if (!traceable(ray)) return false;
   QueryContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
-  ctx.world_ray = ray;
+  ctx.world_ray = &ray;
   RTCRayHit rh;
   rh.ray = to_rtc(ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -409,7 +409,7 @@ bool EmbreeAccel::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   QueryContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
-  ctx.world_ray = ray;
+  ctx.world_ray = &ray;
   RTCRay r = to_rtc(ray);
   rtcOccluded1(impl_->scene, &ctx.rtc, &r);
   return r.tfar == -kInfinity;

@@ -8,6 +8,19 @@
 
 namespace kiln::test {
 
+// A square pinhole camera at `position` looking along `gaze` with a vertical field of view of fov_deg.
+inline CameraDesc pinhole(Vec3f position, Vec3f gaze, Vec3f up, float fov_deg, int size) {
+  CameraDesc cam;
+  cam.id = "1";
+  cam.position = position;
+  cam.gaze = normalize(gaze);
+  cam.up = up;
+  cam.use_fov = true;
+  cam.fov_y_deg = fov_deg;
+  cam.width = cam.height = size;
+  return cam;
+}
+
 // A large Lambertian floor (y = 0, normal +y) of the given albedo (material 0), seen at the origin by a narrow camera
 // from the side: its radiance there is albedo / pi * E, E the irradiance at the origin. 45 degrees above the floor,
 // the pixels' footprint (5 mm) leaves the irradiance's curvature below 1e-5 relative.
@@ -19,15 +32,7 @@ inline SceneDesc lit_floor_scene(float albedo, const std::string& source_path = 
   floor.indices = {0, 1, 2, 0, 2, 3};  // (v1-v0)x(v2-v0) = +y
   floor.material = 0;
   s.meshes.push_back(floor);
-  CameraDesc cam;
-  cam.id = "1";
-  cam.position = {0.0f, 3.0f, 3.0f};
-  cam.gaze = normalize(Vec3f{0.0f, -3.0f, -3.0f});
-  cam.up = {0, 1, 0};
-  cam.use_fov = true;
-  cam.fov_y_deg = 0.05f;
-  cam.width = cam.height = 4;
-  s.cameras.push_back(cam);
+  s.cameras.push_back(pinhole({0.0f, 3.0f, 3.0f}, {0.0f, -3.0f, -3.0f}, {0, 1, 0}, 0.05f, 4));
   return s;
 }
 
@@ -39,12 +44,7 @@ inline SceneDesc ball_scene(float albedo, const std::string& source_path) {
   ball.radius = 1.0f;
   ball.material = 0;
   s.spheres.push_back(ball);
-  CameraDesc cam;
-  cam.position = {0, 0, 3};
-  cam.use_fov = true;
-  cam.fov_y_deg = 20;
-  cam.width = cam.height = 8;
-  s.cameras.push_back(cam);
+  s.cameras.push_back(pinhole({0, 0, 3}, {0, 0, -1}, {0, 1, 0}, 20.0f, 8));
   return s;
 }
 
