@@ -40,7 +40,7 @@ PathSettings convergence_base_settings(const SceneDesc& scene) {
   PathSettings s = kiln_path_defaults(scene);
   s.max_depth = std::max(0, s.max_depth);
   s.russian_roulette = false;
-  s.rr_min_depth = kStrategyRrMinDepth;
+  s.rr_min_depth = kKilnRouletteMinDepth;
   return s;
 }
 

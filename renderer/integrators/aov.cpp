@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/rng.h"
 #include "renderer/world/interaction.h"
 
 namespace kiln {

@@ -8,7 +8,7 @@
 #include "renderer/world/camera.h"
 #include "renderer/film/film.h"
 #include "renderer/image_io/image_io.h"
-#include "renderer/render/render.h"
+#include "renderer/integrators/render_context.h"
 
 namespace kiln {
 

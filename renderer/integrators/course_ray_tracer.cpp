@@ -48,8 +48,9 @@ Rgb direct_from_lights(const World& w, const CourseRaySettings& s, const Surface
 }
 
 // film: the camera ray's pixel (renderer/integrators/integrator.h), for the background texture camera rays see.
-Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, Vec2f film, int depth,
+Rgb trace_recursive(const RenderContext& ctx, const CourseRaySettings& s, const Ray& ray, Vec2f film, int depth,
                     Sampler& sampler, RayCounters& c) {
+  const World& w = ctx.world;
   Hit hit;
   const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
                                                            : query_intersect(w, ray, hit, c, depth == 0);
@@ -66,7 +67,7 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
   if (si.light >= 0) L += emitted(w.lights[size_t(si.light)], si.ng, wo);
   if (!si.material) return L;
   Material textured;
-  if (Rgb unlit; apply_hit_textures(w, si, textured, unlit)) return L + unlit;
+  if (Rgb unlit; apply_hit_textures(ctx, si, textured, unlit)) return L + unlit;
   const Material& m = *si.material;
   const bool inside_dielectric = exits_dielectric(si, ray.d);
   const Rgb attenuation = inside_dielectric ? m.transmittance(hit.t * length(ray.d)) : Rgb(1.0f);
@@ -85,8 +86,8 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
       const Vec3f wi = frame.to_world(*wi_l);
       // Undo the radiance scaling: the course weighs refraction by 1 - F alone.
       const Rgb weight = branches[i].transmission ? branches[i].weight * sqr(branches[i].etap) : branches[i].weight;
-      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.ray_epsilon, ray.time), film, depth + 1,
-                                                 sampler, c);
+      L += weight * trace_recursive(ctx, s, spawn_course_ray(si, wi, s.ray_epsilon, ray.time), film, depth + 1,
+                                    sampler, c);
     }
   }
   return L * attenuation;
@@ -94,9 +95,9 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
 
 }  // namespace
 
-Rgb trace_course_rays(const World& world, const CourseRaySettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
-                      RayCounters& c) {
-  return trace_recursive(world, s, ray, film, 0, sampler, c);
+Rgb integrate(const RenderContext& ctx, const CourseRaySettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
+              RayCounters& c) {
+  return trace_recursive(ctx, s, ray, film, 0, sampler, c);
 }
 
 }  // namespace kiln

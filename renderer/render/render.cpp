@@ -9,7 +9,6 @@
 
 #include "core/error.h"
 #include "renderer/film/pixel_filter.h"
-#include "renderer/texture/scene_textures.h"
 
 namespace kiln {
 namespace {
@@ -80,8 +79,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
                       std::to_string(p.n) + " samples but the render starts at sample " + std::to_string(first) +
                       " (adaptive renders cannot be split into sample ranges)");
   const PixelFilter filter(options.filter);
-  // Texture footprints are measured in this camera's pixels (the world outlives one render; set, not built).
-  if (world.textures) world.textures->set_camera(camera.pixel_spread());
+  const RenderContext ctx(world, camera, settings, options, film);
   std::vector<RenderStats> tile_stats(tiles.size());
   Progress progress(options.progress, tiles.size());
   // One task per tile; work stealing balances uneven tiles.
@@ -114,7 +112,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             // Only a scene with motion takes a time sample (from a dedicated stream: other values are unchanged).
             if (settings.features & kFeatureMotionBlur) ray.time = sampler.dedicated_1d(kTimeStream);
             sampler.set_dimension(kFirstPathDimension);
-            Rgb L = trace(world, settings, ray, film_position, sampler, st.rays);
+            Rgb L = trace(ctx, ray, film_position, sampler, st.rays);
             if (!L.is_finite() || L.has_negative()) {
               if (!st.has_nan) {
                 st.has_nan = true;

@@ -113,10 +113,20 @@ inline Estimate estimate_from_sums(double sum, double sum2, double n) {
   return e;
 }
 
+// A render context for tests that call the integrators (trace) directly: the camera's, with default options and a
+// film the integrators do not write.
+struct TraceContext {
+  RenderOptions options;
+  Film film{1, 1};
+  RenderContext ctx;
+  TraceContext(const World& w, const Camera& camera, const IntegratorSettings& s) : ctx(w, camera, s, options, film) {}
+};
+
 // Mean luminance-free (red channel) estimate over n independent camera samples through random pixels.
 inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const CameraDesc& cd, uint32_t n,
                               uint64_t seed = 7) {
   const Camera cam(cd);
+  const TraceContext tc(w, cam, s);
   RayCounters c;
   double sum = 0, sum2 = 0;
   for (uint32_t i = 0; i < n; ++i) {
@@ -126,7 +136,7 @@ inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const
     sampler.set_dimension(kFirstPathDimension);
     const Vec2f film = pixel_film_position(int(px.x * float(cam.width())), int(px.y * float(cam.height())),
                                            cam.width(), cam.height());
-    const double v = trace(w, s, ray, film, sampler, c).r;
+    const double v = trace(tc.ctx, ray, film, sampler, c).r;
     sum += v;
     sum2 += v * v;
   }
@@ -154,6 +164,7 @@ inline std::vector<Estimate> block_estimates(const World& w, const CameraDesc& c
                                              uint64_t seed, int block) {
   s.features = w.features;
   const Camera cam(cd);
+  const TraceContext tc(w, cam, s);
   const int bw = cam.width() / block, bh = cam.height() / block;
   std::vector<Estimate> out(size_t(bw * bh));
   tbb::parallel_for(0, int(out.size()), [&](int b) {
@@ -168,8 +179,8 @@ inline std::vector<Estimate> block_estimates(const World& w, const CameraDesc& c
           const Vec2f u = sampler.next_2d();
           const Ray ray = cam.generate_ray(float(px) + u.x, float(py) + u.y, sampler.next_2d());
           sampler.set_dimension(kFirstPathDimension);
-          const double v = trace(w, s, ray, pixel_film_position(px, py, cam.width(), cam.height()), sampler, c)
-                               .luminance();
+          const double v =
+              trace(tc.ctx, ray, pixel_film_position(px, py, cam.width(), cam.height()), sampler, c).luminance();
           sum += v;
           sum2 += v * v;
         }

@@ -42,7 +42,7 @@ TEST(Convergence, StrategyNamesShareTheTransportRules) {
   const PathSettings base = convergence_base_settings(scene);
   EXPECT_EQ(base.max_depth, 3);
   EXPECT_FALSE(base.russian_roulette);
-  EXPECT_EQ(base.rr_min_depth, kStrategyRrMinDepth);
+  EXPECT_EQ(base.rr_min_depth, kKilnRouletteMinDepth);
   EXPECT_EQ(convergence_base_settings(SceneDesc{}).max_depth, 8);
 
   struct Want {
