@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "renderer/analysis/error_curve.h"
 #include "renderer/integrators/aov.h"
 #include "renderer/cli/commands.h"
 #include "renderer/render/merge.h"
@@ -252,24 +253,24 @@ int cmd_render(const RenderArgs& args) {
     if (args.time_limit || args.reference) {
       // Waves of doubling spp: error against the reference after each, and/or stop before the budget runs out.
       if (args.spp_range || args.crop) throw Error("--time-limit/--reference", "", "cannot be combined with --crop or --spp-range");
-      Image reference;
       ProgressiveOptions po;
       po.time_limit_seconds = args.time_limit;
+      ProgressiveResult pr;
       if (args.reference) {
-        reference = read_exr(*args.reference).rgb;
-        po.reference = &reference;
-      }
-      std::string csv = wave_csv_header();
-      po.on_wave = [&](const WaveReport& w) { csv += wave_csv_line(w); };
-      const ProgressiveResult pr = render_progressive(*world, camera, settings, ro, spp, po, film);
-      rs = pr.stats;
-      last = pr.spp;
-      final_error = pr.final_error;
-      if (args.reference) {
+        const Image reference = read_exr(*args.reference).rgb;
+        const ErrorCurve curve = render_error_curve(*world, camera, settings, ro, spp, reference, po, film);
+        pr = curve.render;
+        final_error = curve.final_error;
+        std::string csv = wave_csv_header();
+        for (const MeasuredWave& w : curve.waves) csv += wave_csv_line(w);
         csv_path = (std::filesystem::path(args.out_dir) / (stem_of(cd->image_name, "camera" + cd->id) + ".convergence.csv")).string();
         std::filesystem::create_directories(args.out_dir);
         std::ofstream(csv_path) << csv;
+      } else {
+        pr = render_progressive(*world, camera, settings, ro, spp, po, film);
       }
+      rs = pr.stats;
+      last = pr.spp;
       if (!args.quiet && pr.stopped_by_time_limit)
         std::fprintf(stderr, "kiln: time limit reached after %u spp\n", pr.spp);
     } else {
