@@ -1,9 +1,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +9,7 @@
 
 #include "core/error.h"
 #include "renderer/cli/converge.h"
+#include "renderer/cli/interrupt.h"
 #include "renderer/analysis/convergence.h"
 #include "renderer/image_io/image_io.h"
 #include "renderer/render/render.h"
@@ -19,9 +18,6 @@
 
 namespace kiln {
 namespace {
-
-std::atomic<bool> g_converge_interrupted{false};
-extern "C" void on_converge_signal(int) { g_converge_interrupted.store(true); }
 
 // The reference must not share random streams with any measured run (seed + 1 + r), or its errors would be
 // correlated with theirs and relMSE would read low.
@@ -37,21 +33,6 @@ void write_text(const std::string& path, const std::string& text) {
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw Error(path, "", "cannot move the finished file into place: " + ec.message());
 }
-
-// SIGINT / SIGTERM set the cancel flag while a study runs; the defaults come back however it ends.
-struct SignalGuard {
-  SignalGuard() {
-    g_converge_interrupted.store(false);
-    std::signal(SIGINT, on_converge_signal);
-    std::signal(SIGTERM, on_converge_signal);
-  }
-  ~SignalGuard() {
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-};
 
 size_t delta_light_count(const SceneDesc& s) {
   return s.point_lights.size() + s.spot_lights.size() + s.directional_lights.size() + s.area_lights.size();
@@ -109,7 +90,7 @@ int cmd_converge(const ConvergeArgs& args) {
   std::vector<NamedStrategy> strategies;
   for (const std::string& n : names) strategies.push_back(make_strategy(n, base, world->features));
 
-  const SignalGuard signals;
+  const InterruptGuard interrupt;
   std::filesystem::create_directories(args.out_dir);
   const std::filesystem::path dir(args.out_dir);
 
@@ -133,7 +114,7 @@ int cmd_converge(const ConvergeArgs& args) {
     ro.seed = args.seed ^ kReferenceSeedTweak;
     ro.spp_total = args.reference_spp;
     ro.progress = !args.quiet;
-    ro.cancel = &g_converge_interrupted;
+    ro.cancel = &interrupt.flag();
     Film film(camera.width(), camera.height());
     const RenderStats rs = render_samples(*world, camera, ref_strategy.settings, ro, 0, args.reference_spp, film);
     reference = film.mean();
@@ -158,11 +139,11 @@ int cmd_converge(const ConvergeArgs& args) {
   co.runs = args.runs;
   co.budget_seconds = args.budget_seconds / double(strategies.size());
   co.seed = args.seed;
-  co.cancel = &g_converge_interrupted;
+  co.cancel = &interrupt.flag();
   std::vector<ConvergencePoint> points;
   std::vector<StrategySummary> summaries;
   for (const NamedStrategy& st : strategies) {
-    if (g_converge_interrupted.load()) break;
+    if (interrupt.interrupted()) break;
     if (!args.quiet)
       std::fprintf(stderr, "kiln: converge: %-8s %s, %d run(s), %.1fs\n", st.name.c_str(), st.settings.describe().c_str(),
                    co.runs, co.budget_seconds);
@@ -184,7 +165,7 @@ int cmd_converge(const ConvergeArgs& args) {
   std::printf("%s\n%s\n", csv.c_str(), svg.c_str());
   std::fflush(stdout);
 
-  if (g_converge_interrupted.load()) {
+  if (interrupt.interrupted()) {
     std::fprintf(stderr, "kiln: converge: interrupted; wrote the points measured so far\n");
     return 130;
   }
