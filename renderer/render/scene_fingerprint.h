@@ -1,7 +1,7 @@
 // A scene's identity for split renders: a hash of the bytes of every file its loader read (the scene file and the
 // PLY / OBJ / binary data it references), in read order. Paths are not hashed, so machines that mount the scene
 // at different places agree; a changed mesh or a changed scene file gives another hash. Files the loaders do not
-// read (textures and environment maps, which Kiln does not render yet) are not covered.
+// read themselves (texture images, environment maps: SceneDesc::external_files) are not covered.
 #pragma once
 #include <cstdint>
 #include <string>
