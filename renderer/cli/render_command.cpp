@@ -213,9 +213,12 @@ struct CameraJob {
   Film film;
 
   CameraJob(const RenderArgs& args, const LoadedScene& l, const CameraDesc& cd, const std::atomic<bool>& cancel)
-      : desc(cd), camera(cd),
-        settings(camera_settings(cd, l.scene, l.rules, args.rules, args.all_features ? kFeatureAll : l.world->features)),
-        spp(args.spp.value_or(uint32_t(std::max(1, cd.num_samples)))), last(spp),
+      : desc(cd),
+        camera(cd),
+        settings(camera_settings(cd, l.scene, l.rules, args.rules,
+                                 args.all_features ? kFeatureAll : l.world->features)),
+        spp(args.spp.value_or(uint32_t(std::max(1, cd.num_samples)))),
+        last(spp),
         film(camera.width(), camera.height()) {
     if (args.spp_range) std::tie(first, last) = parse_spp_range(*args.spp_range);
     if (args.crop) crop = parse_crop(*args.crop, camera.width(), camera.height());
@@ -297,7 +300,8 @@ Metadata frame_metadata(const RenderArgs& args, const LoadedScene& l, const Came
                    {"kiln:filter", describe_pixel_filter(job.options.filter)},
                    {"kiln:mean_spp", std::to_string(counts.mean)},
                    {"kiln:incomplete", r.stats.cancelled ? "true" : "false"}};
-  if (job.options.adaptive) meta.emplace_back("kiln:adaptive_threshold", std::to_string(job.options.adaptive->threshold));
+  if (job.options.adaptive)
+    meta.emplace_back("kiln:adaptive_threshold", std::to_string(job.options.adaptive->threshold));
   if (r.final_error) {
     meta.emplace_back("kiln:reference", *args.reference);
     meta.emplace_back("kiln:mse", std::to_string(r.final_error->mse));
@@ -370,7 +374,8 @@ nlohmann::json camera_json(const RenderArgs& args, const LoadedScene& l, const C
                         {"integrator", job.settings.describe()},
                         {"render_seconds", rs.seconds},
                         {"aov_seconds", out.aov_seconds},
-                        {"rays", {{"primary", rs.rays.primary}, {"shadow", rs.rays.shadow}, {"indirect", rs.rays.indirect}}},
+                        {"rays",
+                         {{"primary", rs.rays.primary}, {"shadow", rs.rays.shadow}, {"indirect", rs.rays.indirect}}},
                         {"mrays_per_second", rates.mrays},
                         {"ray_query_share", rates.query_share},
                         {"nan_samples", rs.rays.nan_samples},

@@ -142,8 +142,8 @@ Rgb course_path(const RenderContext& ctx, const CoursePathSettings& s, const Ray
       // Delta bounces, which the course follows deterministically, leave the potential alone.
       if (!ds->specular) potential *= ds->f;
       // Expected mode ends paths with Kiln's roulette, from Kiln's depth on.
-      if (s.roulette == CourseRoulette::Expected && depth >= kKilnRouletteMinDepth && !survives_roulette(p, dim, sampler))
-        break;
+      const bool kiln_roulette = s.roulette == CourseRoulette::Expected && depth >= kKilnRouletteMinDepth;
+      if (kiln_roulette && !survives_roulette(p, dim, sampler)) break;
     }
     if (branches.n_pending == 0) break;
     const PathBranch& b = branches.pending[--branches.n_pending];

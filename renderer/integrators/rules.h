@@ -6,9 +6,9 @@
 //                    kKilnRouletteMinDepth bounces, MaxRecursionDepth (else kKilnDefaultMaxDepth) bounces, exact light
 //                    densities, jittered pixel samples.
 //   CENG795 course   cameras without a renderer: the course ray tracer (MaxRecursionDepth, else
-//                    kCourseDefaultRecursion; ShadowRayEpsilon offsets); PathTracing cameras: the course path tracer with the camera's RendererParams (its
-//                    roulette, NEE at the last vertex, the Fresnel split); ellipsoid lights divided by their
-//                    object-space cone pdf; 1 spp samples pixel centres.
+//                    kCourseDefaultRecursion; ShadowRayEpsilon offsets); PathTracing cameras: the course path tracer
+//                    with the camera's RendererParams (its roulette, NEE at the last vertex, the Fresnel split);
+//                    ellipsoid lights divided by their object-space cone pdf; 1 spp samples pixel centres.
 //   CS171 course     the framework's iterative path tracer: NEE without MIS, no roulette, max_depth vertices gather
 //                    direct light (spec §7), which is Kiln's path tracer with the nee strategy and max_depth bounces.
 #pragma once

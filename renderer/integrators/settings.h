@@ -1,8 +1,8 @@
 // The integrators' settings: one struct per integrator, and IntegratorSettings, the variant that says which one
 // renders a camera. Which one a camera gets, and with which values, is decided by the rule sets
-// (renderer/integrators/rules.h) from the defaults below. A new integrator adds its settings to the variant and an `integrate` overload for
-// them (renderer/integrators/integrator.h): trace() and describe() visit the variant, so a missing overload is a
-// compile error, not a run-time one.
+// (renderer/integrators/rules.h) from the defaults below. A new integrator adds its settings to the variant and an
+// `integrate` overload for them (renderer/integrators/integrator.h): trace() and describe() visit the variant, so a
+// missing overload is a compile error, not a run-time one.
 #pragma once
 #include <cstdint>
 #include <string>
