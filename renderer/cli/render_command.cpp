@@ -304,7 +304,7 @@ int cmd_render(const RenderArgs& args) {
                      {"kiln:spp_last", std::to_string(last)},
                      {"kiln:spp_total", std::to_string(spp)},
                      {"kiln:scene_hash", fingerprint.hash},
-                     {"kiln:scene_files", std::to_string(fingerprint.files)},
+                     {"kiln:scene_files", scene_files_metadata(fingerprint)},
                      {"kiln:seed", std::to_string(args.seed)},
                      {"kiln:rules", rules_name(rules)},
                      {"kiln:integrator", settings.describe()},
