@@ -2,9 +2,11 @@
 #pragma once
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -25,6 +27,17 @@ inline std::string tmp_dir(const std::string& sub) {
   const std::string d = std::string(KILN_TEST_TMP) + "/" + sub;
   std::filesystem::create_directories(d);
   return d;
+}
+
+// Runs `kiln ARGS` (the binary under test) and returns its exit code and its stdout and stderr together.
+inline std::pair<int, std::string> run_kiln_command(const std::string& args) {
+  std::string out;
+  FILE* p = popen((std::string(KILN_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  if (!p) return {-1, out};
+  char buf[4096];
+  while (fgets(buf, sizeof buf, p)) out += buf;
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 // A scene with one material, material 0: a Lambertian of the given albedo (shapes, lights and cameras to be added).

@@ -1,7 +1,6 @@
 // The error-against-time study (renderer/analysis/convergence.h), its SVG plot (renderer/analysis/plot_svg.h) and `kiln converge`
 // (renderer/cli/converge.h), run in-process on small scenes.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <fstream>
 #include <pugixml.hpp>
@@ -313,21 +312,11 @@ TEST(ConvergeBudget, ExplicitReferenceSppIsEstimated) {
   EXPECT_DOUBLE_EQ(strategies_budget(60, 0.0), 60.0);  // a reference given as a file
 }
 
-std::pair<int, std::string> run_kiln(const std::string& args) {
-  std::string out;
-  FILE* p = popen((std::string(KILN_BINARY) + " " + args + " 2>&1").c_str(), "r");
-  if (!p) return {-1, out};
-  char buf[4096];
-  while (fgets(buf, sizeof buf, p)) out += buf;
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
 // Why: the user hears the reference's spp and estimated time before it renders, and gets the spp announced.
 TEST(ConvergeBudget, CommandAnnouncesTheReferencePlan) {
   const std::string dir = tmp_dir("converge_budget"), scene = std::string(KILN_SOURCE_DIR) + "/scenes/default.xml";
   const std::string common = " --resolution-scale 0.05 --strategies mis --runs 1 --budget 2";
-  auto [code, out] = run_kiln("converge " + scene + common + " -o " + dir + "/auto");
+  auto [code, out] = run_kiln_command("converge " + scene + common + " -o " + dir + "/auto");
   ASSERT_EQ(code, 0) << out;
   const std::string announced = "rendering one with mis at ";
   const size_t at = out.find(announced);
@@ -339,7 +328,7 @@ TEST(ConvergeBudget, CommandAnnouncesTheReferencePlan) {
   EXPECT_GE(spp, 1u);
   EXPECT_LE(spp, kDefaultReferenceMaxSpp);
 
-  std::tie(code, out) = run_kiln("converge " + scene + common + " --reference-spp 24 -o " + dir + "/explicit");
+  std::tie(code, out) = run_kiln_command("converge " + scene + common + " --reference-spp 24 -o " + dir + "/explicit");
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find(announced + "24 spp"), std::string::npos) << out;
   EXPECT_NE(out.find("as --reference-spp asks"), std::string::npos) << out;

@@ -166,21 +166,11 @@ TEST_F(AdaptiveScene, RefusesToContinueFromTheMiddleOfTheSamples) {
   EXPECT_THROW(render(0.05f, 64, 1, false, {{8, 64}}), Error);
 }
 
-std::pair<int, std::string> run_kiln(const std::string& args) {
-  std::string out;
-  FILE* p = popen((std::string(KILN_BINARY) + " " + args + " 2>&1").c_str(), "r");
-  if (!p) return {-1, out};
-  char buf[4096];
-  while (fgets(buf, sizeof buf, p)) out += buf;
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
 // Why: the CLI option reaches the scheduler and reports what it did; bad combinations are bad input (exit 2).
 TEST(Adaptive, CommandLine) {
   const std::string dir = tmp_dir("adaptive_cli"), scene = std::string(KILN_SOURCE_DIR) + "/scenes/default.xml";
   std::filesystem::remove_all(dir + "/bad");
-  auto [code, out] = run_kiln("render " + scene + " -q --spp 64 --crop 150,200,150,200 --adaptive 0.1 "
+  auto [code, out] = run_kiln_command("render " + scene + " -q --spp 64 --crop 150,200,150,200 --adaptive 0.1 "
                               "--adaptive-min-spp 8 -o " + dir + "/out --stats " + dir + "/stats.json");
   ASSERT_EQ(code, 0) << out;
   const auto stats = nlohmann::json::parse(std::ifstream(dir + "/stats.json"));
@@ -191,7 +181,7 @@ TEST(Adaptive, CommandLine) {
   // The EXR has the scale of a render that took every sample (adaptive pixels divided by their own counts): mean
   // luminance over the crop within 5% (the noise of that mean is ~0.5%; a pixel divided by 64 instead of its count
   // would be dimmed by the mean spp's shortfall).
-  std::tie(code, out) = run_kiln("render " + scene + " -q --spp 64 --crop 150,200,150,200 -o " + dir + "/full");
+  std::tie(code, out) = run_kiln_command("render " + scene + " -q --spp 64 --crop 150,200,150,200 -o " + dir + "/full");
   ASSERT_EQ(code, 0) << out;
   const auto mean_luminance = [](const std::string& path) {
     double sum = 0;
@@ -201,11 +191,11 @@ TEST(Adaptive, CommandLine) {
   };
   const double adaptive = mean_luminance(dir + "/out/default.exr"), full = mean_luminance(dir + "/full/default.exr");
   EXPECT_NEAR(adaptive / full, 1.0, 0.05) << "adaptive " << adaptive << ", every sample " << full;
-  std::tie(code, out) = run_kiln("render " + scene + " -q --spp 64 --adaptive 0.1 --spp-range 0:32 -o " + dir + "/bad");
+  std::tie(code, out) = run_kiln_command("render " + scene + " -q --spp 64 --adaptive 0.1 --spp-range 0:32 -o " + dir + "/bad");
   EXPECT_EQ(code, kExitBadInput) << out;
   EXPECT_NE(out.find("--adaptive"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir + "/bad"));
-  std::tie(code, out) = run_kiln("render " + scene + " -q --spp 4 --filter lanczos -o " + dir + "/bad");
+  std::tie(code, out) = run_kiln_command("render " + scene + " -q --spp 4 --filter lanczos -o " + dir + "/bad");
   EXPECT_EQ(code, kExitBadInput) << out;
   EXPECT_NE(out.find("--filter"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir + "/bad"));
