@@ -8,9 +8,10 @@
 //    (with a warning when it exceeds the share), and the strategies still get (1 - kReferenceShare) of the budget.
 //  - The strategies share what the reference left, equally; each stops before a wave that would overrun its part
 //    (renderer/render/progressive.h).
-// So with the default reference the command renders for about the budget: past it only by the prediction error of
-// the last wave of each run, the error evaluation between waves, and a first 1-spp wave that alone exceeds its part
-// (scene loading and the world build come on top).
+// So with the default reference the plan fits the budget, and the render time stays within 1.25x of it: past it
+// only by the prediction error of the last wave of each run and the error evaluation between waves. A first 1-spp
+// wave per run that alone exceeds its part is warned about before the strategies start (renderer/cli/
+// converge_command.cpp). Scene loading and the world build come on top.
 #pragma once
 #include <cstdint>
 

@@ -58,7 +58,7 @@ struct SignalGuard {
 struct RenderedReference {
   Image image;
   uint32_t spp = 0;
-  double seconds = 0.0;
+  double seconds = 0.0, seconds_per_spp = 0.0;
   bool cancelled = false;
 };
 
@@ -120,6 +120,7 @@ RenderedReference render_reference(const World& world, const Camera& camera, con
   RenderedReference r;
   r.spp = plan.spp;
   r.seconds = pilot.seconds;
+  r.seconds_per_spp = pilot.seconds_per_spp;
   r.cancelled = pilot.cancelled;
   if (!r.cancelled && plan.spp > pilot.spp) {
     ro.progress = !args.quiet;
@@ -138,6 +139,20 @@ RenderedReference render_reference(const World& world, const Camera& camera, con
              {"kiln:incomplete", r.cancelled ? "true" : "false"}});
   if (!args.quiet && !r.cancelled) std::fprintf(stderr, "kiln: converge: reference took %.1fs\n", r.seconds);
   return r;
+}
+
+// Every run renders at least 1 spp, whatever its part of the budget: when that minimum (at about the reference's cost
+// per spp) exceeds the strategies' part, the study will overrun, and the user hears so before it starts.
+void warn_if_one_spp_overruns(const ConvergeArgs& args, size_t strategies, double seconds_per_spp,
+                              double reference_seconds) {
+  const double minimum = double(strategies) * double(args.runs) * seconds_per_spp;
+  const double part = strategies_budget(args.budget_seconds, reference_seconds);
+  if (args.quiet || minimum <= part) return;
+  std::fprintf(stderr,
+               "kiln: converge: warning: %zu strategies x %d run(s) need at least 1 spp each, about %.0fs at %.3gs per "
+               "spp, more than the %.0fs left of the budget: the study will take about %.0fs (lower --runs, "
+               "--strategies or --resolution-scale, or raise --budget)\n",
+               strategies, args.runs, minimum, seconds_per_spp, part, reference_seconds + minimum);
 }
 
 size_t delta_light_count(const SceneDesc& s) {
@@ -222,6 +237,7 @@ int cmd_converge(const ConvergeArgs& args) {
     reference = r.image;
     reference_seconds = r.seconds;
     reference_note = "reference mis " + std::to_string(r.spp) + " spp";
+    warn_if_one_spp_overruns(args, strategies.size(), r.seconds_per_spp, r.seconds);
   }
 
   ConvergenceOptions co;

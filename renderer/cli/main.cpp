@@ -96,7 +96,9 @@ int main(int argc, char** argv) {
   converge->add_option("--budget", ca.budget_seconds,
                        "The study's total render seconds. Without --reference, a reference is rendered first within "
                        "half of it (as many spp as fit, at most 4096; its spp and estimated time are printed before "
-                       "it starts); the strategies share the rest. Loading and building the scene come on top")
+                       "it starts); the strategies share the rest. Render time stays within 1.25x the budget unless "
+                       "1 spp per run already costs more (then a warning gives the expected total); loading and "
+                       "building the scene come on top")
       ->check(CLI::PositiveNumber)->capture_default_str();
   converge->add_option("--runs", ca.runs, "Independent runs per strategy (different seeds) for the spread")->check(CLI::PositiveNumber)->capture_default_str();
   converge->add_option("-o,--output", ca.out_dir, "Output folder for convergence.csv, convergence.svg, reference.exr")->capture_default_str();

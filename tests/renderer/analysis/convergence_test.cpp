@@ -333,6 +333,14 @@ TEST(ConvergeBudget, CommandAnnouncesTheReferencePlan) {
   EXPECT_NE(out.find(announced + "24 spp"), std::string::npos) << out;
   EXPECT_NE(out.find("as --reference-spp asks"), std::string::npos) << out;
   EXPECT_EQ(read_exr(dir + "/explicit/reference.exr").find("kiln:spp"), "24");
+
+  // A budget below one spp per run: the overrun is announced before the strategies start.
+  std::tie(code, out) = run_kiln_command("converge " + scene +
+                                         " --resolution-scale 0.05 --strategies mis,nee,cosine --runs 3 --budget 0.001"
+                                         " -o " + dir + "/tiny");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("need at least 1 spp each"), std::string::npos) << out;
+  EXPECT_LT(out.find("need at least 1 spp each"), out.find("kiln: converge: mis ")) << out;
 }
 
 }  // namespace
