@@ -291,7 +291,7 @@ Metadata frame_metadata(const RenderArgs& args, const LoadedScene& l, const Came
                    {"kiln:spp_last", std::to_string(job.last)},
                    {"kiln:spp_total", std::to_string(job.spp)},
                    {"kiln:scene_hash", l.fingerprint.hash},
-                   {"kiln:scene_files", std::to_string(l.fingerprint.files)},
+                   {"kiln:scene_files", scene_files_metadata(l.fingerprint)},
                    {"kiln:seed", std::to_string(args.seed)},
                    {"kiln:rules", rules_name(l.rules)},
                    {"kiln:integrator", job.settings.describe()},

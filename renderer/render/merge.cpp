@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "renderer/render/scene_fingerprint.h"
 
 namespace kiln {
 namespace {
@@ -15,8 +16,10 @@ struct IdentityKey {
   const char* key;
   const char* what;
 };
+constexpr const char* kSceneHashKey = "kiln:scene_hash";
+constexpr const char* kSceneFilesKey = "kiln:scene_files";
 constexpr IdentityKey kIdentityKeys[] = {
-    {"kiln:scene_hash", "scene (hash of its files)"},
+    {kSceneHashKey, "scene (hash of its files)"},
     {"kiln:camera", "camera"},
     {"kiln:seed", "seed"},
     {"kiln:spp_total", "total spp"},
@@ -76,6 +79,17 @@ Part read_part(const std::string& path) {
   return p;
 }
 
+// The first scene file whose hash differs between two parts (renderer/render/scene_fingerprint.h), as a clause of
+// the refusal; empty when the parts' scenes agree or a part lists no files (written by an older kiln).
+std::string file_difference(const Part& p, const Part& ref) {
+  if (p.header.find(kSceneHashKey) == ref.header.find(kSceneHashKey)) return "";
+  const auto a = parse_scene_files_metadata(p.header.find(kSceneFilesKey));
+  const auto b = parse_scene_files_metadata(ref.header.find(kSceneFilesKey));
+  if (a.empty() || b.empty()) return "";
+  const auto d = first_file_difference(a, b);
+  return d ? "; first scene file that differs: " + *d : "";
+}
+
 void check_same_frame(const Part& p, const Part& ref) {
   const DataWindow &a = p.header.window, &b = ref.header.window;
   if (a.full_width != b.full_width || a.full_height != b.full_height)
@@ -86,7 +100,7 @@ void check_same_frame(const Part& p, const Part& ref) {
     const std::string va = p.header.find(k.key), vb = ref.header.find(k.key);
     if (va != vb)
       throw Error(p.path, "", std::string(k.what) + " differs from " + ref.path + " (" + k.key + " '" + va + "' vs '" +
-                                  vb + "'); a merge combines parts of one frame only");
+                                  vb + "'" + file_difference(p, ref) + "); a merge combines parts of one frame only");
   }
 }
 
@@ -221,6 +235,7 @@ MergeResult merge_parts(const std::vector<std::string>& paths) {
   r.spp_total = parse_count(parts[0].path, "kiln:spp_total", parts[0].header.find("kiln:spp_total"));
   for (const IdentityKey& k : kIdentityKeys) r.frame.emplace_back(k.key, parts[0].header.find(k.key));
   r.frame.emplace_back("kiln:scene", parts[0].header.find("kiln:scene"));
+  r.frame.emplace_back(kSceneFilesKey, parts[0].header.find(kSceneFilesKey));
   r.missing = find_missing(parts, fw, fh, r.spp_total);
   return r;
 }

@@ -2,9 +2,11 @@
 #pragma once
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -25,6 +27,17 @@ inline std::string tmp_dir(const std::string& sub) {
   const std::string d = std::string(KILN_TEST_TMP) + "/" + sub;
   std::filesystem::create_directories(d);
   return d;
+}
+
+// Runs `kiln ARGS` (the binary under test) and returns its exit code and its stdout and stderr together.
+inline std::pair<int, std::string> run_kiln_command(const std::string& args) {
+  std::string out;
+  FILE* p = popen((std::string(KILN_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  if (!p) return {-1, out};
+  char buf[4096];
+  while (fgets(buf, sizeof buf, p)) out += buf;
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 // A scene with one material, material 0: a Lambertian of the given albedo (shapes, lights and cameras to be added).
@@ -114,12 +127,14 @@ inline Estimate estimate_from_sums(double sum, double sum2, double n) {
 }
 
 // A render context for tests that call the integrators (trace) directly: the camera's, with default options and a
-// film the integrators do not write.
+// film the integrators do not write. It keeps its own copy of the settings, so a temporary may be passed.
 struct TraceContext {
+  IntegratorSettings settings;
   RenderOptions options;
   Film film{1, 1};
   RenderContext ctx;
-  TraceContext(const World& w, const Camera& camera, const IntegratorSettings& s) : ctx(w, camera, s, options, film) {}
+  TraceContext(const World& w, const Camera& camera, IntegratorSettings s)
+      : settings(std::move(s)), ctx(w, camera, settings, options, film) {}
 };
 
 // Mean luminance-free (red channel) estimate over n independent camera samples through random pixels.
