@@ -14,7 +14,7 @@ int cmd_merge(const std::vector<std::string>& parts, const std::string& output) 
                    {"kiln:incomplete", r.complete() ? "false" : "true"}};
   meta.insert(meta.end(), r.frame.begin(), r.frame.end());
   if (!r.complete()) meta.emplace_back("kiln:missing", missing_metadata(r.missing));
-  write_exr(output, r.image, {}, meta);
+  write_exr(output, r.image, r.aovs, meta);
   std::printf("%s\n", output.c_str());
   for (const SampleGap& g : r.missing)
     std::fprintf(stderr, "kiln: warning: %s: missing samples %llu:%llu of %llu in pixels %d,%d,%d,%d (render them with %s)\n",

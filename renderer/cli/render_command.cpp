@@ -29,7 +29,6 @@ namespace {
 // Samples per pixel of the AOV pass: enough to anti-alias edges, never more than the beauty render takes (at 1 spp
 // four AOV rays per pixel would cost ~25% of the render; capped by the total spp, not the part's, so split renders
 // agree).
-constexpr uint32_t kAovSamplesPerPixel = 4;
 
 std::string stem_of(const std::string& image_name, const std::string& fallback) {
   const std::string stem = std::filesystem::path(image_name).stem().string();
@@ -210,6 +209,7 @@ struct CameraJob {
   uint32_t first = 0, last = 1;  // the sample range rendered (--spp-range)
   std::optional<Crop> crop;
   RenderOptions options;
+  uint32_t aovs = 0;  // AovFlag bits (--aov)
   Film film;
 
   CameraJob(const RenderArgs& args, const LoadedScene& l, const CameraDesc& cd, const std::atomic<bool>& cancel)
@@ -230,6 +230,8 @@ struct CameraJob {
     options.reverse_tile_order = args.reverse_tiles;
     options.filter = pixel_filter_for(cd, args.filter);
     if (args.adaptive) options.adaptive = AdaptiveSampling{*args.adaptive, args.adaptive_min_spp};
+    if (args.aovs) aovs = parse_aovs(*args.aovs);
+    if (aovs & kAovSurface) film.keep_surfaces();  // the samples record what they see (renderer/integrators/aov.h)
   }
   std::string stem() const { return stem_of(desc.image_name, "camera" + desc.id); }
   Crop region() const { return crop.value_or(Crop{0, camera.width(), 0, camera.height()}); }
@@ -313,7 +315,6 @@ Metadata frame_metadata(const RenderArgs& args, const LoadedScene& l, const Came
 
 struct WrittenFrame {
   std::string exr, png;
-  double aov_seconds = 0;
   SampleCounts counts;
 };
 
@@ -324,12 +325,7 @@ WrittenFrame write_frame(const RenderArgs& args, const LoadedScene& l, const Cam
   out.png = (std::filesystem::path(args.out_dir) / (job.stem() + ".png")).string();
   const Image full = job.film.mean();
   out.counts = sample_counts(job.film, job.region());
-  std::vector<AovLayer> aovs;
-  if (const uint32_t aov_flags = args.aovs ? parse_aovs(*args.aovs) : 0u) {
-    const auto t_aov = std::chrono::steady_clock::now();
-    aovs = render_aovs(*l.world, job.camera, aov_flags, job.film, job.options, std::min(kAovSamplesPerPixel, job.spp));
-    out.aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_aov).count();
-  }
+  std::vector<AovLayer> aovs = aov_layers(job.film, job.aovs);
   const Image img = job.crop ? crop_image(full, *job.crop) : full;
   if (job.crop) aovs = crop_layers(std::move(aovs), job.camera.width(), *job.crop);
   std::optional<DataWindow> window;
@@ -373,7 +369,6 @@ nlohmann::json camera_json(const RenderArgs& args, const LoadedScene& l, const C
                         {"rules", rules_name(l.rules)},
                         {"integrator", job.settings.describe()},
                         {"render_seconds", rs.seconds},
-                        {"aov_seconds", out.aov_seconds},
                         {"rays",
                          {{"primary", rs.rays.primary}, {"shadow", rs.rays.shadow}, {"indirect", rs.rays.indirect}}},
                         {"mrays_per_second", rates.mrays},

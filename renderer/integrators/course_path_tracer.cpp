@@ -75,22 +75,26 @@ void split_delta_branches(const Material& m, const SurfaceInteraction& si, const
     const Vec3f wb = frame.to_world(*wb_l);
     const Rgb bb = p.beta * branches[i].weight;
     if (!consistent_sides(si, wo, wb, wo_l, *wb_l) || bb.is_black() || !bb.is_finite()) continue;
-    const float es = branches[i].transmission ? p.eta_scale * sqr(branches[i].etap) : p.eta_scale;
-    b.pending[b.n_pending++] =
-        PathBranch{PathState{spawn_ray(si.p, si.ng, wb, p.ray.time, si.extent), bb, es, true}, potential, depth + 1};
+    PathState next = p;
+    next.beta = bb;
+    if (branches[i].transmission) next.eta_scale *= sqr(branches[i].etap);
+    next.after_specular = true;
+    move_on(next, si, spawn_ray(si.p, si.ng, wb, p.ray.time, si.extent));
+    b.pending[b.n_pending++] = PathBranch{next, potential, depth + 1};
     ++b.n_split;
   }
 }
 
 template <bool kDelta, bool kDielectric, bool kMeshesOnly>
 Rgb course_path(const RenderContext& ctx, const CoursePathSettings& s, const Ray& camera_ray, Vec2f film,
-                Sampler& sampler, RayCounters& c) {
+                Sampler& sampler, RayCounters& c, VisibleSurface* visible) {
   const World& w = ctx.world;
   const DirectionSampling directions = s.importance_sampling ? DirectionSampling::Brdf : DirectionSampling::Uniform;
   const bool roulette = s.roulette != CourseRoulette::Off;
   const bool use_nee = s.nee && !w.lights.empty();
   const int max_depth = path_depth_limit(s.max_depth);
   PathState p{camera_ray};
+  p.visible = visible;
   Rgb L(0.0f), potential(1.0f);
   Branches branches;
   int start_depth = 0;
@@ -158,9 +162,9 @@ Rgb course_path(const RenderContext& ctx, const CoursePathSettings& s, const Ray
 }  // namespace
 
 Rgb integrate(const RenderContext& ctx, const CoursePathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
-              RayCounters& c) {
+              RayCounters& c, VisibleSurface* visible) {
   return dispatch_on_features(ctx.settings.features, [&]<bool kDelta, bool kDielectric, bool kMeshesOnly>() {
-    return course_path<kDelta, kDielectric, kMeshesOnly>(ctx, s, ray, film, sampler, c);
+    return course_path<kDelta, kDielectric, kMeshesOnly>(ctx, s, ray, film, sampler, c, visible);
   });
 }
 

@@ -41,9 +41,11 @@ std::string IntegratorSettings::describe() const {
   return d;
 }
 
-Rgb trace(const RenderContext& ctx, const Ray& ray, Vec2f film, Sampler& sampler, RayCounters& c) {
+Rgb trace(const RenderContext& ctx, const Ray& ray, Vec2f film, Sampler& sampler, RayCounters& c,
+          VisibleSurface* visible) {
   const IntegratorSettings& s = ctx.settings;
-  Rgb L = std::visit([&](const auto& method) { return integrate(ctx, method, ray, film, sampler, c); }, s.method);
+  Rgb L =
+      std::visit([&](const auto& method) { return integrate(ctx, method, ray, film, sampler, c, visible); }, s.method);
   if (s.clamp > 0.0f) {
     const float mx = L.max_component();
     if (mx > s.clamp) L *= s.clamp / mx;

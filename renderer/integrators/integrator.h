@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "core/sampler.h"
+#include "renderer/film/visible_surface.h"
 #include "renderer/integrators/render_context.h"
 #include "renderer/integrators/settings.h"
 #include "renderer/world/ray_query.h"
@@ -23,16 +24,19 @@ inline constexpr uint32_t kTimeStream = 0x74696d65u;  // "time"
 
 // Radiance along a camera ray (the sampler is positioned at kFirstPathDimension), one overload per integrator's
 // settings. film: the ray's pixel on the image, its centre in [0, 1]^2 (x to the right, y down): where a camera ray
-// that misses looks up the background texture (renderer/integrators/path_vertex.h, camera_background).
+// that misses looks up the background texture (renderer/integrators/path_vertex.h, camera_background). visible:
+// where to record what the camera sample sees for the AOVs (renderer/film/visible_surface.h), or null; recording
+// draws nothing from the sampler, so the radiance is the same either way.
 Rgb integrate(const RenderContext& ctx, const PathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
-              RayCounters& c);
+              RayCounters& c, VisibleSurface* visible);
 Rgb integrate(const RenderContext& ctx, const CoursePathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
-              RayCounters& c);
+              RayCounters& c, VisibleSurface* visible);
 Rgb integrate(const RenderContext& ctx, const CourseRaySettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
-              RayCounters& c);
+              RayCounters& c, VisibleSurface* visible);
 
 // The integrator the context's settings name, with their firefly clamp.
-Rgb trace(const RenderContext& ctx, const Ray& ray, Vec2f film, Sampler& sampler, RayCounters& c);
+Rgb trace(const RenderContext& ctx, const Ray& ray, Vec2f film, Sampler& sampler, RayCounters& c,
+          VisibleSurface* visible = nullptr);
 
 // The film position of pixel (x, y) (y = 0 the top row) of a width x height image: its centre, (x + 1/2) / width,
 // (y + 1/2) / height. The CENG795 spec (§1, BackgroundTexture) maps the background image to the image plane with

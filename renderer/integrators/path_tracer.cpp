@@ -20,11 +20,12 @@ float emission_weight(const PathSettings& s, bool use_nee, bool after_specular, 
 // for, without dielectrics no media are tracked, with only world-space meshes the shape dispatch is compiled out.
 template <bool kDelta, bool kDielectric, bool kMeshesOnly>
 Rgb kiln_path(const RenderContext& ctx, const PathSettings& s, const Ray& camera_ray, Vec2f film, Sampler& sampler,
-              RayCounters& c) {
+              RayCounters& c, VisibleSurface* visible) {
   const World& w = ctx.world;
   const bool use_nee = s.nee && !w.lights.empty();
   const int max_depth = path_depth_limit(s.max_depth);
   PathState p{camera_ray};
+  p.visible = visible;
   Rgb L(0.0f);
   float prev_pdf = 0.0f;  // the density of the direction that found the vertex, and the vertex it left (MIS)
   LightQuery prev{};
@@ -78,9 +79,9 @@ Rgb kiln_path(const RenderContext& ctx, const PathSettings& s, const Ray& camera
 }  // namespace
 
 Rgb integrate(const RenderContext& ctx, const PathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
-              RayCounters& c) {
+              RayCounters& c, VisibleSurface* visible) {
   return dispatch_on_features(ctx.settings.features, [&]<bool kDelta, bool kDielectric, bool kMeshesOnly>() {
-    return kiln_path<kDelta, kDielectric, kMeshesOnly>(ctx, s, ray, film, sampler, c);
+    return kiln_path<kDelta, kDielectric, kMeshesOnly>(ctx, s, ray, film, sampler, c, visible);
   });
 }
 

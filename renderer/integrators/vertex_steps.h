@@ -18,22 +18,37 @@ struct PathState {
   // cancels when the path leaves it (pbrt-v4's etaScale).
   float eta_scale = 1.0f;
   bool after_specular = true;  // the ray left a delta bounce (the camera counts as one): emitters count in full
+  // What the camera sample sees, for the AOVs (null when not asked for), and the path's length before `ray`.
+  VisibleSurface* visible = nullptr;
+  float travelled = 0.0f;
 };
+
+// The path leaves si, which its ray found, along `next`.
+inline void move_on(PathState& p, const SurfaceInteraction& si, const Ray& next) {
+  if (p.visible && !p.visible->found) p.travelled += si.t * length(p.ray.d);
+  p.ray = next;
+}
 
 // The number of bounces a path may take: max_depth, unlimited (< 0) still bounded by kMaxPathVertices.
 inline int path_depth_limit(int max_depth) {
   return max_depth < 0 ? kMaxPathVertices : std::min(max_depth, kMaxPathVertices);
 }
 
-// The hit's material with its textures applied (`scratch` holds a textured copy). False when the path ends at the
-// hit: an emitter without a material, or a replace_all texture, whose colour reaches L through the throughput.
+// The hit's material with its textures applied (`scratch` holds a textured copy), recorded for the AOVs when it is
+// the first surface the camera sample sees. False when the path ends at the hit: an emitter without a material, or a
+// replace_all texture, whose colour reaches L through the throughput.
 inline bool resolve_material(const RenderContext& ctx, SurfaceInteraction& si, Material& scratch, const PathState& p,
                              Rgb& L) {
-  if (!si.material) return false;
-  if (Rgb unlit; apply_hit_textures(ctx, si, scratch, unlit)) {
-    L += p.beta * unlit;
+  if (!si.material) {
+    see_resolved_surface(p.visible, si, p.ray, p.travelled, nullptr);
     return false;
   }
+  if (Rgb unlit; apply_hit_textures(ctx, si, scratch, unlit)) {
+    L += p.beta * unlit;
+    see_resolved_surface(p.visible, si, p.ray, p.travelled, &unlit);
+    return false;
+  }
+  see_resolved_surface(p.visible, si, p.ray, p.travelled, nullptr);
   return true;
 }
 
@@ -61,7 +76,7 @@ inline bool scatter(PathState& p, const SurfaceInteraction& si, const Frame& fra
   if (p.beta.is_black() || !p.beta.is_finite()) return false;
   if (ds.transmission) p.eta_scale *= sqr(ds.eta);
   p.after_specular = ds.specular;
-  p.ray = spawn_ray(si.p, si.ng, wi, p.ray.time, si.extent);
+  move_on(p, si, spawn_ray(si.p, si.ng, wi, p.ray.time, si.extent));
   return true;
 }
 
