@@ -53,6 +53,33 @@ struct SignalGuard {
   SignalGuard& operator=(const SignalGuard&) = delete;
 };
 
+struct SamplerWorld {
+  std::string label;  // the sampler's name when --light-samplers was given, else empty
+  std::unique_ptr<World> world;
+};
+
+struct MeasuredStrategy {
+  NamedStrategy strategy;
+  const World* world;
+};
+
+// The scene's world for each light sampler of --light-samplers, or its default world.
+std::vector<SamplerWorld> build_sampler_worlds(const SceneDesc& scene, const ConvergeArgs& args) {
+  WorldOptions wo;
+  wo.accel = args.accel;
+  std::vector<SamplerWorld> worlds;
+  const std::vector<std::string> samplers = split_list(args.light_samplers);
+  for (const std::string& name : samplers)
+    if (!parse_light_sampler(name))
+      throw Error("--light-samplers", "", "unknown light sampler '" + name + "' (power, uniform, bvh)");
+  for (const std::string& name : samplers) {
+    wo.light_sampler = parse_light_sampler(name);
+    worlds.push_back({name, build_world(scene, wo)});
+  }
+  if (worlds.empty()) worlds.push_back({"", build_world(scene, wo)});
+  return worlds;
+}
+
 size_t delta_light_count(const SceneDesc& s) {
   return s.point_lights.size() + s.spot_lights.size() + s.directional_lights.size() + s.area_lights.size();
 }
@@ -101,13 +128,18 @@ int cmd_converge(const ConvergeArgs& args) {
     removed_delta = true;
   }
 
-  // Every strategy is one of Kiln's, so the world samples lights with Kiln's exact densities.
-  WorldOptions wo;
-  wo.accel = args.accel;
-  const auto world = build_world(scene, wo);
+  // Every strategy is one of Kiln's, so the world samples lights with Kiln's exact densities; one world per light
+  // sampler (the light sampler is part of the immutable world).
+  const std::vector<SamplerWorld> worlds = build_sampler_worlds(scene, args);
+  const World& first_world = *worlds.front().world;
   const Camera camera(cd);
-  std::vector<NamedStrategy> strategies;
-  for (const std::string& n : names) strategies.push_back(make_strategy(n, base, world->features));
+  std::vector<MeasuredStrategy> strategies;
+  for (const SamplerWorld& sw : worlds)
+    for (const std::string& n : names) {
+      NamedStrategy st = make_strategy(n, base, sw.world->features);
+      if (!sw.label.empty()) st.name += "/" + sw.label;
+      strategies.push_back({std::move(st), sw.world.get()});
+    }
 
   const SignalGuard signals;
   std::filesystem::create_directories(args.out_dir);
@@ -124,7 +156,7 @@ int cmd_converge(const ConvergeArgs& args) {
                       std::to_string(camera.height()) + " (check --resolution-scale)");
     reference_note = "reference " + std::filesystem::path(*args.reference).filename().string();
   } else {
-    const NamedStrategy ref_strategy = make_strategy("mis", base, world->features);
+    const NamedStrategy ref_strategy = make_strategy("mis", base, first_world.features);
     const std::string path = (dir / "reference.exr").string();
     if (!args.quiet)
       std::fprintf(stderr, "kiln: converge: no --reference given; rendering one with mis at %u spp (%dx%d) to %s\n",
@@ -135,7 +167,7 @@ int cmd_converge(const ConvergeArgs& args) {
     ro.progress = !args.quiet;
     ro.cancel = &g_converge_interrupted;
     Film film(camera.width(), camera.height());
-    const RenderStats rs = render_samples(*world, camera, ref_strategy.settings, ro, 0, args.reference_spp, film);
+    const RenderStats rs = render_samples(first_world, camera, ref_strategy.settings, ro, 0, args.reference_spp, film);
     reference = film.mean();
     write_exr(path, reference, {},
               {{"kiln:version", KILN_VERSION},
@@ -161,12 +193,13 @@ int cmd_converge(const ConvergeArgs& args) {
   co.cancel = &g_converge_interrupted;
   std::vector<ConvergencePoint> points;
   std::vector<StrategySummary> summaries;
-  for (const NamedStrategy& st : strategies) {
+  for (const MeasuredStrategy& ms : strategies) {
     if (g_converge_interrupted.load()) break;
+    const NamedStrategy& st = ms.strategy;
     if (!args.quiet)
       std::fprintf(stderr, "kiln: converge: %-8s %s, %d run(s), %.1fs\n", st.name.c_str(), st.settings.describe().c_str(),
                    co.runs, co.budget_seconds);
-    const std::vector<ConvergencePoint> p = measure_strategy(*world, camera, st, reference, co);
+    const std::vector<ConvergencePoint> p = measure_strategy(*ms.world, camera, st, reference, co);
     if (p.empty()) continue;
     points.insert(points.end(), p.begin(), p.end());
     summaries.push_back(summarize(p));

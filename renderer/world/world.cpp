@@ -299,8 +299,9 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     w.features |= kFeatureInfiniteLights | kFeatureEnvironmentMap;
   }
   if (!w.lights.empty()) {
-    w.light_selector = LightSelector(w.lights, options.light_selection);
-    w.stats.light_selector_built = true;
+    w.light_sampler = LightSampler(w.lights, options.light_sampler.value_or(default_light_sampler(w.lights)));
+    w.stats.light_sampler_built = true;
+    w.stats.light_sampler = w.light_sampler.stats();
   }
   for (const CameraDesc& c : scene.cameras)
     if (c.aperture_size > 0.0f) w.features |= kFeatureDepthOfField;
