@@ -117,7 +117,9 @@ LightBounds merge(const LightBounds& a, const LightBounds& b) {
 ImportanceBounds importance_bounds(const LightBounds& b) {
   ImportanceBounds ib;
   ib.center = b.box.center();
-  ib.radius_sq = length_squared(b.box.diagonal() * 0.5f);
+  ib.radius = length(b.box.diagonal() * 0.5f);
+  ib.radius_sq = ib.radius * ib.radius;
+  ib.inside = ib.radius_sq > 0.0f ? b.phi / ib.radius_sq : b.phi;
   ib.axis = b.axis;
   ib.phi = b.phi;
   ib.cos_theta_o = b.cos_theta_o;
@@ -140,12 +142,11 @@ float importance(const ImportanceBounds& b, Vec3f p, Vec3f n) {
   const Vec3f to_p = p - b.center;
   const float d2 = length_squared(to_p);
   // Inside the bounding sphere every direction and distance is possible: the estimate of a point on its surface.
-  if (d2 <= b.radius_sq) return b.radius_sq > 0.0f ? b.phi / b.radius_sq : b.phi;
-  const float inv_d = 1.0f / std::sqrt(d2);
+  if (d2 <= b.radius_sq) return b.inside;
+  const float inv_d = 1.0f / std::sqrt(d2), inv_d2 = inv_d * inv_d;
   const Vec3f wi = to_p * inv_d;  // from the emitter towards p
   // theta_b: half-angle of the cone the bounding sphere subtends from p.
-  const float sin2_b = b.radius_sq / d2;
-  const float sin_b = std::sqrt(sin2_b), cos_b = safe_sqrt(1.0f - sin2_b);
+  const float sin_b = b.radius * inv_d, cos_b = safe_sqrt(1.0f - sin_b * sin_b);
   // theta' = max(0, theta_w - theta_o - theta_b): the smallest angle between an emission normal and p.
   float cos_w = dot(b.axis, wi);
   if (b.two_sided) cos_w = std::abs(cos_w);
@@ -157,7 +158,7 @@ float importance(const ImportanceBounds& b, Vec3f p, Vec3f n) {
   }
   const float cos_p = cos_x < cos_b ? cos_x * cos_b + sin_x * sin_b : 1.0f;
   if (cos_p < b.cos_theta_e) return 0.0f;
-  float imp = b.phi * std::max(cos_p, kRingFloor) / d2;
+  float imp = b.phi * std::max(cos_p, kRingFloor) * inv_d2;
   if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f) {
     // theta_i' = max(0, theta_i - theta_b), theta_i from either side of the surface (it may transmit).
     const float cos_i = std::abs(dot(wi, n));
@@ -168,7 +169,7 @@ float importance(const ImportanceBounds& b, Vec3f p, Vec3f n) {
 
 ImportanceBounds4::ImportanceBounds4() {
   for (int k = 0; k < 4; ++k) {
-    center_x[k] = center_y[k] = center_z[k] = radius_sq[k] = 0.0f;
+    center_x[k] = center_y[k] = center_z[k] = radius[k] = radius_sq[k] = inside[k] = 0.0f;
     axis_x[k] = axis_y[k] = 0.0f;
     axis_z[k] = 1.0f;
     phi[k] = 0.0f;
@@ -184,7 +185,9 @@ void ImportanceBounds4::set(int lane, const ImportanceBounds& b) {
   center_x[k] = b.center.x;
   center_y[k] = b.center.y;
   center_z[k] = b.center.z;
+  radius[k] = b.radius;
   radius_sq[k] = b.radius_sq;
+  inside[k] = b.inside;
   axis_x[k] = b.axis.x;
   axis_y[k] = b.axis.y;
   axis_z[k] = b.axis.z;
@@ -223,13 +226,10 @@ void importance4(const ImportanceBounds4& b, Vec3f p, Vec3f n, float (&out)[4]) 
   const __m128 tx = _mm_sub_ps(px, _mm_load_ps(b.center_x)), ty = _mm_sub_ps(py, _mm_load_ps(b.center_y)),
                tz = _mm_sub_ps(pz, _mm_load_ps(b.center_z));
   const __m128 d2 = dot4(tx, ty, tz, tx, ty, tz);
-  const __m128 r2 = _mm_load_ps(b.radius_sq), phi = _mm_load_ps(b.phi);
-  const __m128 inside = _mm_cmple_ps(d2, r2);
-  const __m128 inside_value = select4(_mm_cmpgt_ps(r2, zero), _mm_div_ps(phi, r2), phi);
-  const __m128 inv_d = _mm_div_ps(one, _mm_sqrt_ps(d2));
+  const __m128 inside = _mm_cmple_ps(d2, _mm_load_ps(b.radius_sq));
+  const __m128 inv_d = _mm_div_ps(one, _mm_sqrt_ps(d2)), inv_d2 = _mm_mul_ps(inv_d, inv_d);
   const __m128 wx = _mm_mul_ps(tx, inv_d), wy = _mm_mul_ps(ty, inv_d), wz = _mm_mul_ps(tz, inv_d);
-  const __m128 sin2_b = _mm_div_ps(r2, d2);
-  const __m128 sin_b = _mm_sqrt_ps(sin2_b), cos_b = _mm_sqrt_ps(_mm_max_ps(zero, _mm_sub_ps(one, sin2_b)));
+  const __m128 sin_b = _mm_mul_ps(_mm_load_ps(b.radius), inv_d), cos_b = sine4(sin_b);
   __m128 cos_w = dot4(ax, ay, az, wx, wy, wz);
   cos_w = select4(_mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(b.two_sided))), abs4(cos_w), cos_w);
   const __m128 sin_w = sine4(cos_w);
@@ -239,12 +239,12 @@ void importance4(const ImportanceBounds4& b, Vec3f p, Vec3f n, float (&out)[4]) 
   const __m128 sin_x = select4(beyond_o, _mm_sub_ps(_mm_mul_ps(sin_w, cos_o), _mm_mul_ps(cos_w, sin_o)), zero);
   const __m128 cos_p = cos_minus4(cos_x, sin_x, cos_b, sin_b);
   const __m128 lit = _mm_cmpnlt_ps(cos_p, _mm_load_ps(b.cos_theta_e));
-  __m128 imp = _mm_div_ps(_mm_mul_ps(phi, _mm_max_ps(cos_p, _mm_set1_ps(kRingFloor))), d2);
+  __m128 imp = _mm_mul_ps(_mm_mul_ps(_mm_load_ps(b.phi), _mm_max_ps(cos_p, _mm_set1_ps(kRingFloor))), inv_d2);
   if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f) {
     const __m128 cos_i = abs4(dot4(wx, wy, wz, _mm_set1_ps(n.x), _mm_set1_ps(n.y), _mm_set1_ps(n.z)));
     imp = _mm_mul_ps(imp, cos_minus4(cos_i, sine4(cos_i), cos_b, sin_b));
   }
-  const __m128 value = select4(inside, inside_value, _mm_and_ps(lit, imp));
+  const __m128 value = select4(inside, _mm_load_ps(b.inside), _mm_and_ps(lit, imp));
   _mm_store_ps(out, _mm_and_ps(alive, value));
 }
 

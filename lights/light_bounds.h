@@ -38,7 +38,9 @@ inline float emission_scale(Rgb c) { return std::sqrt((c.r * c.r + c.g * c.g + c
 // A bounds as the hierarchy evaluates it, with what every evaluation needs precomputed.
 struct ImportanceBounds {
   Vec3f center;                // of the box's bounding sphere
-  float radius_sq = 0.0f;      // that sphere's squared radius
+  float radius = 0.0f;         // that sphere's radius
+  float radius_sq = 0.0f;
+  float inside = 0.0f;         // the importance at points inside the sphere: phi / radius^2 (phi for a point)
   Vec3f axis{0.0f, 0.0f, 1.0f};
   float phi = 0.0f;
   float cos_theta_o = 1.0f, sin_theta_o = 0.0f, cos_theta_e = 1.0f;
@@ -61,7 +63,7 @@ float importance(const ImportanceBounds& b, Vec3f p, Vec3f n);
 // importances in one pass of 4-wide SIMD (SSE2, the x86-64 baseline): the same operations as importance() in the
 // same order, lane by lane. Lanes that were not set have importance 0 and phi 0.
 struct alignas(16) ImportanceBounds4 {
-  float center_x[4], center_y[4], center_z[4], radius_sq[4];
+  float center_x[4], center_y[4], center_z[4], radius[4], radius_sq[4], inside[4];
   float axis_x[4], axis_y[4], axis_z[4], phi[4];
   float cos_theta_o[4], sin_theta_o[4], cos_theta_e[4], behind_plane[4];
   uint32_t two_sided[4];  // all bits set: two-sided

@@ -176,19 +176,14 @@ std::optional<TreeChoice> LightTree::sample(Vec3f p, Vec3f n, float u) const {
     const Node& node = nodes_[ref];
     float w[4];
     const float sum = child_weights(node.child, p, n, w);
-    // The child whose part of [0, sum) holds u * sum (the last one with weight, should rounding leave it past
-    // them all); u becomes the position within that part for the next level.
+    // The child whose part of [0, sum) holds u * sum: the number of parts that end at or below it (parts of
+    // weight 0 end where the previous one does, so they are never chosen; should rounding put u * sum past them
+    // all, the last one with weight). u becomes the position within that part for the next level.
     const float target = u * sum;
-    int c = -1;
-    float below = 0.0f, below_c = 0.0f;
-    for (int k = 0; k < 4; ++k) {
-      if (!(w[k] > 0.0f)) continue;
-      c = k;
-      below_c = below;
-      if (target < below + w[k]) break;
-      below += w[k];
-    }
-    u = std::clamp((target - below_c) / w[c], 0.0f, kOneMinusEpsilon);
+    const float start[4] = {0.0f, w[0], w[0] + w[1], (w[0] + w[1]) + w[2]};
+    int c = int(target >= start[1]) + int(target >= start[2]) + int(target >= start[3]);
+    while (!(w[c] > 0.0f)) --c;
+    u = std::clamp((target - start[c]) / w[c], 0.0f, kOneMinusEpsilon);
     pmf *= w[c] / sum;
     ref = node.next[c];
   }

@@ -74,6 +74,17 @@ TEST(LightSamplerCli, TheSamplerReachesTheWorldStatsAndMetadata) {
   EXPECT_NE(power.exr.rgb.pixels()[100].r, bvh.exr.rgb.pixels()[100].r);
 }
 
+// Same seed, same image: the hierarchy is built in one thread and sampled without shared state.
+TEST(LightSamplerCli, HierarchyRendersAreBitIdenticalForAnyThreadCount) {
+  const Rendered one = render_many_lights("threads1", "--threads 1");
+  const Rendered two = render_many_lights("threads2", "--threads 2 --reverse-tiles");
+  ASSERT_EQ(one.run.exit_code, 0) << one.run.output;
+  ASSERT_EQ(two.run.exit_code, 0) << two.run.output;
+  ASSERT_EQ(one.exr.rgb.pixels().size(), two.exr.rgb.pixels().size());
+  for (size_t i = 0; i < one.exr.rgb.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(one.exr.rgb.pixels()[i][c], two.exr.rgb.pixels()[i][c]) << "pixel " << i;
+}
+
 TEST(LightSamplerCli, InfoReportsTheSamplerAndItsTree) {
   const RunResult bvh = run_kiln("info " + kManyLights);
   ASSERT_EQ(bvh.exit_code, 0) << bvh.output;
