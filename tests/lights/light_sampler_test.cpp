@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <map>
+#include <ostream>
 #include <vector>
 
 #include "lights/light_sampler.h"
@@ -13,6 +14,10 @@
 #include "support/chi2.h"
 
 namespace kiln {
+
+// gtest prints a failed comparison of samplers by name.
+void PrintTo(LightSamplerKind kind, std::ostream* os) { *os << light_sampler_name(kind); }
+
 namespace {
 
 // A quad of two triangles at height y facing down (-y), centred at (x, z), side s.

@@ -187,8 +187,9 @@ def main():
     kref = refs[kiln_ref_tag]
     for name, _, tag in entrants:
         if tag != kiln_ref_tag:
+            med_rel, p95_rel, ratio = block_agreement(kref, refs[tag])
             print("references agree, Kiln against %s: 16-px blocks median %.4f, p95 %.4f, mean ratio Kiln/%s %.4f"
-                  % ((name,) + block_agreement(kref, refs[tag]) + (name,)))
+                  % (name, med_rel, p95_rel, name, ratio))
 
     rows = []
     mode = "adaptive %g" % a.adaptive if a.adaptive > 0 else "fixed"
