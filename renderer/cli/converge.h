@@ -18,11 +18,13 @@ struct ConvergeArgs {
   // Light samplers (power, uniform, bvh), each strategy measured with each, named STRATEGY/SAMPLER; empty: the
   // scene's default sampler only, strategies named as given.
   std::string light_samplers;
-  double budget_seconds = 60;            // total render time across all strategies (the reference not included)
+  // The study's whole render time, the reference included when it is rendered here (renderer/analysis/convergence_budget.h).
+  double budget_seconds = 60;
   int runs = 3;                          // independent runs per strategy (different seeds) for the spread
   std::string out_dir = "converge";
   double resolution_scale = 1.0;         // e.g. 0.25 renders 512x512 cameras at 128x128
-  uint32_t reference_spp = 4096;
+  // Exactly this many spp for the rendered reference; absent: as many as fit its share of the budget (at most 4096).
+  std::optional<uint32_t> reference_spp;
   uint32_t max_spp = 1u << 16;
   uint64_t seed = 0;
   int threads = 0;                       // 0: all cores
