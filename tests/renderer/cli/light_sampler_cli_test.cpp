@@ -2,9 +2,7 @@
 // the EXR's kiln:render_options), a bad name or a course scene is refused with exit 2, split renders with different
 // samplers are not merged, and kiln converge measures each strategy with each sampler.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -23,15 +21,8 @@ struct RunResult {
 };
 
 RunResult run_kiln(const std::string& args) {
-  const std::string cmd = std::string(KILN_BINARY) + " " + args + " 2>&1";
-  RunResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), int(buf.size()), p)) r.output += buf.data();
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  auto [code, output] = run_kiln_command(args);
+  return {code, std::move(output)};
 }
 
 const std::string kManyLights = std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/many_lights.pbrt";
