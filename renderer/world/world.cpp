@@ -382,7 +382,7 @@ class WorldBuilder {
   }
 
   // The lights that are not shapes (after the shapes: directional and infinite lights need the scene's radius), then
-  // the selector over all of them.
+  // the light sampler over all of them.
   void add_lights() {
     WorldStats& st = w_.stats;
     for (const PointLightDesc& l : scene_.point_lights) add_light(PointLight(l.position, l.intensity), st.point_lights);
@@ -409,8 +409,9 @@ class WorldBuilder {
       w_.features |= kFeatureInfiniteLights | kFeatureEnvironmentMap;
     }
     if (!w_.lights.empty()) {
-      w_.light_selector = LightSelector(w_.lights, options_.light_selection);
-      st.light_selector_built = true;
+      w_.light_sampler = LightSampler(w_.lights, options_.light_sampler.value_or(default_light_sampler(w_.lights)));
+      st.light_sampler_built = true;
+      st.light_sampler = w_.light_sampler.stats();
     }
   }
 

@@ -1,14 +1,15 @@
 // The renderable world built from a SceneDesc: geometry for the accelerators, materials, lights and the per-shape
-// data shading needs. Only what the scene uses is built (no sphere data without spheres, no light selector without
+// data shading needs. Only what the scene uses is built (no sphere data without spheres, no light sampler without
 // lights) and WorldStats records what was.
 #pragma once
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "lights/light.h"
-#include "lights/light_selector.h"
+#include "lights/light_sampler.h"
 #include "materials/material.h"
 #include "renderer/accel/accelerator.h"
 #include "renderer/world/features.h"
@@ -41,7 +42,8 @@ struct WorldStats {
   size_t interface_shapes = 0;  // shapes left out because their material only marks a boundary (pbrt "interface")
   bool sphere_geometry_built = false;
   bool cone_sampler_built = false;  // sphere/ellipsoid lights present
-  bool light_selector_built = false;
+  bool light_sampler_built = false;
+  LightSamplerStats light_sampler;  // which sampler, its tree's size and build time
   double build_seconds = 0;
 };
 
@@ -55,7 +57,7 @@ struct World {
   std::vector<Material> materials;
   std::vector<Light> lights;
   std::vector<int> infinite_lights;  // indices into lights of what rays that leave the scene see
-  LightSelector light_selector;
+  LightSampler light_sampler;
   Rgb ambient{0};
   Rgb background{0};
   uint32_t features = 0;
@@ -71,7 +73,9 @@ struct World {
 
 struct WorldOptions {
   AccelKind accel = AccelKind::Embree;
-  LightSelection light_selection = LightSelection::PowerProportional;
+  // How next event estimation chooses lights (the rule set's, renderer/integrators/rules.h); absent: the scene's
+  // default (lights/light_sampler.h default_light_sampler).
+  std::optional<LightSamplerKind> light_sampler;
   bool build_accelerator = true;  // kiln info only needs the description and the feature mask
   EllipsoidPdf ellipsoid_pdf = EllipsoidPdf::Exact;  // the rule set's (renderer/integrators/rules.h)
   EnvMapSampling env_map_sampling = EnvMapSampling::ImportanceSampled;  // the rule set's (renderer/integrators/rules.h)
