@@ -26,6 +26,7 @@ enum Feature : uint32_t {
   kFeatureMotionBlur = 1u << 15,      // moving shapes: camera rays take a time sample, accelerators are time-varying
   kFeatureEnvironmentMap = 1u << 16,  // an image-based infinite light (lat-long environment map)
   kFeatureBackfaceCulling = 1u << 17, // camera rays skip triangles facing away from them (course rules)
+  kFeatureMix = 1u << 18,             // mix materials: each hit chooses one of a mix's components (World::mixes)
   kFeatureAll = 0xffffffffu,
 };
 

@@ -121,12 +121,18 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   for (const MaterialDesc& m : scene.materials) {
     w.materials.push_back(build_material(m, scene));
     const Material& built = w.materials.back();
+    if (m.mix) {
+      ++w.stats.compiled_materials["mix"];
+      continue;
+    }
     ++w.stats.compiled_materials[built.describe()];
     if (built.surface_flags() & kLobeGlossy) w.features |= kFeatureGlossy;
     if (built.has_delta()) w.features |= kFeatureDelta;
     if (built.oriented()) w.features |= kFeatureDielectric;
   }
   w.stats.materials = w.materials.size();
+  w.mixes = build_material_mixes(scene);
+  if (!w.mixes.empty()) w.features |= kFeatureMix;
   if (!w.ambient.is_black()) w.features |= kFeatureAmbient;
 
   // Surfaces whose material only marks a boundary (pbrt's "interface") change no ray: without participating media

@@ -144,7 +144,7 @@ TEST(PbrtParams, BadValuesAreErrorsNamingFileLineAndDirective) {
       {"Material \"diffuse\" \"rgb reflectance\" [0.5 1.5 0.5]", "at most 1"},
       {"AreaLightSource \"diffuse\" \"blackbody L\" [-5]", "positive"},
       {"AreaLightSource \"diffuse\" \"spectrum L\" [500 1 400 2]", "wavelengths must increase"},
-      {"AreaLightSource \"diffuse\" \"spectrum L\" \"no-such-spectrum\"", "neither a named spectrum"},
+      {"AreaLightSource \"diffuse\" \"spectrum L\" \"no-such-spectrum\"", "is not a named spectrum (nearest: "},
   };
   for (const Case& c : cases) {
     const std::string e = error_of(kHead + c.text + "\n");
@@ -391,8 +391,9 @@ TEST_F(PbrtAllDirectives, Materials) {
 
   const PbrtMaterialDesc& gold = pbrt_of(s.meshes[1].material);
   EXPECT_EQ(gold.kind, PbrtMaterialKind::Conductor);
-  EXPECT_EQ(gold.conductor_eta, *named_spectrum_rgb("metal-Au-eta", SpectrumUse::Unbounded));
-  EXPECT_EQ(gold.conductor_k, *named_spectrum_rgb("metal-Au-k", SpectrumUse::Unbounded));
+  const RgbComplexIor au = *named_conductor_ior("Au");  // eta and k reduced together
+  EXPECT_EQ(gold.conductor_eta, au.eta);
+  EXPECT_EQ(gold.conductor_k, au.k);
   EXPECT_EQ(gold.uroughness, 0.1f);
   EXPECT_EQ(gold.vroughness, 0.2f);
   EXPECT_FALSE(gold.remap_roughness);
