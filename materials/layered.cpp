@@ -2,9 +2,12 @@
 
 #include <bit>
 #include <initializer_list>
+#include <type_traits>
+#include <utility>
 
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "materials/fresnel.h"
 #include "materials/henyey_greenstein.h"
 
 namespace kiln {
@@ -50,6 +53,15 @@ bool is_specular_bxdf(const B& b) {
   return (b.flags() & kLobeSpecular) != 0;
 }
 
+// A bounce off the base: direction, density, f |cos| and the path weight f |cos| / pdf.
+struct BaseBounce {
+  Vec3f wi;
+  float pdf;
+  Rgb f_cos;
+  Rgb weight;
+  bool specular;
+};
+
 // The random walk's state and the stack it walks through.
 template <class Base>
 struct Walk {
@@ -67,9 +79,27 @@ struct Walk {
     const float uc = next();
     return s.coat.sample(w, uc, next_2d(), mode, lobes);
   }
-  std::optional<BsdfSample> sample_base(Vec3f w) {
-    const float uc = next();
-    return base.sample(w, uc, next_2d());
+  // A bounce off the base from the inside direction w. The Lambertian base is sampled in closed form (cosine
+  // weighted: weight = reflectance exactly, and no lobe choice to draw), other bases through their sample().
+  std::optional<BaseBounce> bounce_base(Vec3f w) {
+    if constexpr (std::is_same_v<Base, Lambert>) {
+      const Vec3f wb = sample_cosine_hemisphere(next_2d());
+      const float p = cosine_hemisphere_pdf(wb.z);
+      if (!(p > 0.0f)) return std::nullopt;
+      return BaseBounce{wb, p, base.reflectance * (kInvPi * wb.z), base.reflectance, false};
+    } else {
+      const float uc = next();
+      const std::optional<BsdfSample> bs = base.sample(w, uc, next_2d());
+      if (!usable(bs)) return std::nullopt;
+      const float cos_i = std::abs(bs->wi.z);
+      return BaseBounce{bs->wi, bs->pdf, bs->f * cos_i, bs->f * (cos_i / bs->pdf), bs->is_specular()};
+    }
+  }
+  // The base's f(wo, wi) as a colour and a scale, Lambert's kept factored as reflectance and 1 / pi (the rounding
+  // of its closed form).
+  std::pair<Rgb, float> base_f(Vec3f wo, Vec3f wi) const {
+    if constexpr (std::is_same_v<Base, Lambert>) return {base.reflectance, kInvPi};
+    else return {base.eval(wo, wi), 1.0f};
   }
   // Density with which NEE through the coat (sampled from wi) produces the inside direction -w_up, the
   // competitor of a walk direction w_up heading for the coat (see the header's "Exit weights").
@@ -106,6 +136,12 @@ uint32_t Layered<Base>::flags() const {
   if (coat & kLobeSpecular) f |= kLobeSpecular;
   if ((bottom & kLobeDiffuse) || !layers.albedo.is_black()) f |= kLobeDiffuse;
   return f;
+}
+
+template <class Base>
+float Layered<Base>::albedo_estimate() const {
+  const float r = fresnel_dielectric(1.0f, layers.coat.eta);
+  return r + (1.0f - r) * base.albedo_estimate();
 }
 
 // One estimate of f(wo, wi) per random walk, with next event estimation towards wi through the coat at every
@@ -170,12 +206,12 @@ Rgb Layered<Base>::eval(Vec3f wo, Vec3f wi) const {
       // At the base: NEE along wis (a smooth base has no direction to evaluate), then a sampled bounce.
       if (!base_smooth) {
         const float wt_nee = smooth ? 1.0f : power_heuristic(wis->pdf, base.pdf(-w, -wis->wi));
-        f += beta * base.eval(-w, -wis->wi) * wis_weight *
-             (std::abs(wis->wi.z) * wt_nee * transmittance(t, wis->wi));
+        const auto [f_base, scale] = walk.base_f(-w, -wis->wi);
+        f += beta * f_base * wis_weight * (scale * std::abs(wis->wi.z) * wt_nee * transmittance(t, wis->wi));
       }
-      const std::optional<BsdfSample> bs = walk.sample_base(-w);
-      if (!usable(bs)) break;
-      beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+      const std::optional<BaseBounce> bs = walk.bounce_base(-w);
+      if (!bs) break;
+      beta *= bs->weight;
       w = bs->wi;
       if (smooth) continue;
       // The bounce heads for the rough coat: its exit towards wi. A smooth base's mirror direction has no
@@ -205,8 +241,8 @@ float Layered<Base>::pdf(Vec3f wo, Vec3f wi) const {
       sum += base.pdf(-wos->wi, -wis->wi);
       continue;
     }
-    const std::optional<BsdfSample> rs = walk.sample_base(-wos->wi);
-    if (!usable(rs)) continue;
+    const std::optional<BaseBounce> rs = walk.bounce_base(-wos->wi);
+    if (!rs) continue;
     const float exit_pdf = coat.pdf(-rs->wi, wi);
     if (base_smooth) {
       sum += exit_pdf;
@@ -274,11 +310,11 @@ std::optional<BsdfSample> Layered<Base>::sample(Vec3f wo, float uc, Vec2f u) con
     }
 
     if (z == 0.0f) {
-      const std::optional<BsdfSample> bs = walk.sample_base(-w);
-      if (!usable(bs)) return std::nullopt;
-      f *= bs->f * std::abs(bs->wi.z);
+      const std::optional<BaseBounce> bs = walk.bounce_base(-w);
+      if (!bs) return std::nullopt;
+      f *= bs->f_cos;
       pdf_path *= bs->pdf;
-      specular_path &= bs->is_specular();
+      specular_path &= bs->specular;
       w = bs->wi;
       continue;
     }

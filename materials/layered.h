@@ -80,6 +80,8 @@ struct LayerStack {
   LayeredExitWeight exit_weight = LayeredExitWeight::Consistent;
 };
 
+// Parameters: `layers` (above) and `base`, the bottom layer (Lambert: CoatedDiffuse, RoughConductor:
+// CoatedConductor).
 template <class Base>
 struct Layered {
   LayerStack layers;
@@ -91,6 +93,8 @@ struct Layered {
   // Reflection; specular when the coat is; diffuse when the base or the medium scatters diffusely; glossy when
   // either interface is rough. Both layers smooth without a medium: specular alone (a delta lobe).
   uint32_t flags() const;
+  // Coat reflectance at normal incidence plus the base's albedo estimate seen through the coat.
+  float albedo_estimate() const;
 };
 
 extern template struct Layered<Lambert>;

@@ -134,7 +134,13 @@ class PbrtContext {
     if (!d_.remap_roughness) return TrowbridgeReitz(u, v);
     return TrowbridgeReitz(TrowbridgeReitz::roughness_to_alpha(u), TrowbridgeReitz::roughness_to_alpha(v));
   }
-  // The random walk's limits, and g in (-1, 1).
+  // The coat (interface index eta, the material's roughness) and the medium under it, checked: the random walk's
+  // limits, g in (-1, 1), thickness and albedo.
+  LayerStack layers(float eta) const {
+    check_layers();
+    return LayerStack{RoughDielectric{eta, distribution()}, non_negative(d_.thickness, "thickness"),
+                      albedo_like(d_.albedo, "albedo"), d_.g, d_.max_depth, d_.n_samples};
+  }
   void check_layers() const {
     if (!std::isfinite(d_.g) || !(std::abs(d_.g) < 1.0f))
       fail("g must lie strictly between -1 and 1, got " + std::to_string(d_.g));
@@ -189,29 +195,16 @@ Material build_pbrt_material(const PbrtMaterialDesc& d, const Context& ctx) {
       break;
     }
     case PbrtMaterialKind::CoatedDiffuse:
-      p.check_layers();
-      out.surface = CoatedDiffuse{p.albedo_like(d.reflectance, "reflectance"),
-                                  RoughDielectric{p.positive(d.eta, "eta"), p.distribution()},
-                                  p.non_negative(d.thickness, "thickness"),
-                                  p.albedo_like(d.albedo, "albedo"),
-                                  d.g,
-                                  d.max_depth,
-                                  d.n_samples};
+      out.surface =
+          CoatedDiffuse{{p.layers(p.positive(d.eta, "eta")), Lambert{p.albedo_like(d.reflectance, "reflectance")}}};
       break;
     case PbrtMaterialKind::CoatedConductor: {
-      p.check_layers();
       const float eta = p.positive(d.eta, "interface.eta");
       // The conductor lies under the coat: its index relative to the coat's (pbrt-v4 divides eta and k by it).
       const RgbComplexIor ior = p.conductor_ior();
       const TrowbridgeReitz base = p.distribution(d.conductor_uroughness, d.conductor_vroughness,
                                                   "conductor.uroughness", "conductor.vroughness");
-      out.surface = CoatedConductor{RoughDielectric{eta, p.distribution()},
-                                    RoughConductor{base, {ior.eta / eta, ior.k / eta}},
-                                    p.non_negative(d.thickness, "thickness"),
-                                    p.albedo_like(d.albedo, "albedo"),
-                                    d.g,
-                                    d.max_depth,
-                                    d.n_samples};
+      out.surface = CoatedConductor{{p.layers(eta), RoughConductor{base, {ior.eta / eta, ior.k / eta}}}};
       break;
     }
     case PbrtMaterialKind::DiffuseTransmission: {

@@ -22,8 +22,8 @@ Rgb material_albedo(const Material& m) {
         else if constexpr (std::is_same_v<T, Lambert>) return b.reflectance;
         else if constexpr (std::is_same_v<T, RoughConductor>) return fresnel_conductor(1.0f, b.ior);
         else if constexpr (std::is_same_v<T, RoughDielectric>) return Rgb(1.0f);
-        else if constexpr (std::is_same_v<T, CoatedDiffuse>) return b.reflectance;
-        else if constexpr (std::is_same_v<T, CoatedConductor>) return fresnel_conductor(1.0f, b.conductor.ior);
+        else if constexpr (std::is_same_v<T, CoatedDiffuse>) return b.base.reflectance;
+        else if constexpr (std::is_same_v<T, CoatedConductor>) return fresnel_conductor(1.0f, b.base.ior);
         else if constexpr (std::is_same_v<T, DiffuseTransmission>) return b.reflectance + b.transmittance;
         else return b.kd + b.ks;
       },

@@ -38,13 +38,9 @@ const RgbComplexIor kGold{Rgb(0.16f, 0.40f, 1.59f), Rgb(6.6f, 2.37f, 1.70f)};
 CoatedConductor coated(float eta, float coat_alpha, RgbComplexIor ior_in_air, float base_alpha, float thickness,
                        Rgb albedo = Rgb(0), float g = 0, int max_depth = 10, int n_samples = 1) {
   const RgbComplexIor under_coat{ior_in_air.eta / eta, ior_in_air.k / eta};
-  return CoatedConductor{RoughDielectric{eta, TrowbridgeReitz(coat_alpha, coat_alpha)},
-                         RoughConductor{TrowbridgeReitz(base_alpha, base_alpha), under_coat},
-                         thickness,
-                         albedo,
-                         g,
-                         max_depth,
-                         n_samples};
+  const LayerStack layers{RoughDielectric{eta, TrowbridgeReitz(coat_alpha, coat_alpha)}, thickness, albedo, g,
+                          max_depth, n_samples};
+  return CoatedConductor{{layers, RoughConductor{TrowbridgeReitz(base_alpha, base_alpha), under_coat}}};
 }
 
 TEST(CoatedConductor, SmoothLayersMatchTheSeriesOfInternalReflections) {
@@ -91,7 +87,7 @@ TEST(CoatedConductor, BaseThatReflectsNothingLeavesTheCoat) {
   Rng rng(21, 22);
   for (int i = 0; i < 500; ++i) {
     const Vec3f wo = sample_uniform_hemisphere(rng.next_2d()), wi = sample_uniform_hemisphere(rng.next_2d());
-    ASSERT_EQ(bxdf.eval(wo, wi), Rgb(bxdf.coat.f(wo, wi)));
+    ASSERT_EQ(bxdf.eval(wo, wi), Rgb(bxdf.layers.coat.f(wo, wi)));
   }
 }
 

@@ -40,8 +40,9 @@ double external_transmittance(double eta) {
 
 CoatedDiffuse coated(Rgb rho, float eta, float alpha, float thickness, Rgb albedo = Rgb(0), float g = 0,
                      int max_depth = 10, int n_samples = 1) {
-  return CoatedDiffuse{rho, RoughDielectric{eta, TrowbridgeReitz(alpha, alpha)}, thickness, albedo, g, max_depth,
-                       n_samples};
+  const LayerStack layers{RoughDielectric{eta, TrowbridgeReitz(alpha, alpha)}, thickness, albedo, g, max_depth,
+                          n_samples};
+  return CoatedDiffuse{{layers, Lambert{rho}}};
 }
 
 // ---- Closed forms for the smooth coat ----
@@ -119,7 +120,7 @@ TEST(CoatedDiffuse, BlackBaseIsTheCoatAlone) {
   Rng rng(21, 22);
   for (int i = 0; i < 500; ++i) {
     const Vec3f wo = sample_uniform_hemisphere(rng.next_2d()), wi = sample_uniform_hemisphere(rng.next_2d());
-    ASSERT_EQ(m.eval(wo, wi), Rgb(m.coat.f(wo, wi)));
+    ASSERT_EQ(m.eval(wo, wi), Rgb(m.layers.coat.f(wo, wi)));
   }
 }
 
@@ -209,7 +210,7 @@ TEST(CoatedDiffuse, PbrtV4ExitWeightOverestimates) {
   const Vec3f wo = direction_at(0.9, 0.4);
   const MeanEstimate sampled = sampled_albedo(surface_material(bxdf), wo, 200000, 81);
   const MeanEstimate consistent = evaluated_albedo(surface_material(bxdf), wo, 200000, 82);
-  bxdf.exit_weight = LayeredExitWeight::PbrtV4;
+  bxdf.layers.exit_weight = LayeredExitWeight::PbrtV4;
   const MeanEstimate pbrt = evaluated_albedo(surface_material(bxdf), wo, 200000, 83);
   EXPECT_NEAR(consistent.mean, sampled.mean, kSigmas * std::hypot(consistent.stderr_, sampled.stderr_));
   EXPECT_GT(pbrt.mean, 1.05 * sampled.mean) << "pbrt " << pbrt.mean << " sampled " << sampled.mean;
