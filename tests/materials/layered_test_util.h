@@ -22,16 +22,6 @@ namespace kiln::test {
 
 inline constexpr double kLayeredPi = 3.14159265358979323846;
 
-// Unpolarised Fresnel reflectance from index n_i into n_t, double precision (1 under total internal reflection).
-inline double fresnel_ref(double cos_i, double n_i, double n_t) {
-  const double sin_t = n_i / n_t * std::sqrt(std::max(0.0, 1 - cos_i * cos_i));
-  if (sin_t >= 1) return 1;
-  const double cos_t = std::sqrt(1 - sin_t * sin_t);
-  const double rs = (n_i * cos_i - n_t * cos_t) / (n_i * cos_i + n_t * cos_t);
-  const double rp = (n_t * cos_i - n_i * cos_t) / (n_t * cos_i + n_i * cos_t);
-  return 0.5 * (rs * rs + rp * rp);
-}
-
 // Next representable direction: the same direction for the BSDF, an independent estimate for the hash.
 inline Vec3f jitter(Vec3f w, int k) {
   Vec3f v = w;
@@ -73,6 +63,17 @@ inline MeanEstimate evaluated_albedo(const Material& m, Vec3f wo, int n, uint64_
     wi.z *= flip;
     return wi.z != 0 ? kLayeredPi * double(m.eval(wo, wi).average()) : 0.0;
   });
+}
+
+// Albedo <= 1 within `sigmas` standard errors, through sample() and through eval(), from normal incidence down to
+// grazing; `seed` advances by one per estimate.
+inline void expect_albedo_at_most_one(const Material& m, const std::string& name, double sigmas, uint64_t& seed) {
+  for (float c : {1.0f, 0.6f, 0.2f, 0.02f}) {
+    const MeanEstimate s = sampled_albedo(m, direction_at(c), 40000, ++seed);
+    EXPECT_LE(s.mean, 1.0 + sigmas * s.stderr_) << name << " sample, cos " << c;
+    const MeanEstimate e = evaluated_albedo(m, direction_at(c), 20000, ++seed);
+    EXPECT_LE(e.mean, 1.0 + sigmas * e.stderr_) << name << " eval, cos " << c;
+  }
 }
 
 // One direction cell (or a pool of cells) of the two-sample comparison.

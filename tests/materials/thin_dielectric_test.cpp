@@ -13,18 +13,9 @@
 namespace kiln::test {
 namespace {
 
-double fresnel_dielectric_ref(double cos_i, double eta) {
-  const double sin_t = std::sqrt(std::max(0.0, 1 - cos_i * cos_i)) / eta;
-  if (sin_t >= 1) return 1;
-  const double cos_t = std::sqrt(1 - sin_t * sin_t);
-  const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-  const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-  return 0.5 * (rs * rs + rp * rp);
-}
-
 // The slab's reflectance by following the light inside: each internal round trip reflects twice with r.
 double summed_bounces(double cos_i, double eta) {
-  const double r = fresnel_dielectric_ref(cos_i, eta), t = 1 - r;
+  const double r = fresnel_dielectric_ref(cos_i, 1, eta), t = 1 - r;
   if (r >= 1) return 1;
   double R = r, inside = t;  // energy travelling inside towards the far face
   for (int bounce = 0; bounce < 10000 && inside > 1e-17; ++bounce) {
