@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Writes scenes/pbrt/named_spectra.cpp: the tabulated data of every named spectrum pbrt-v4 ships (its
-src/pbrt/util/spectrum.cpp: glasses, metals, standard illuminants, camera sensor curves), on uniform grids.
+src/pbrt/util/spectrum.cpp: glasses, metals, standard illuminants, camera sensor curves), on uniform grids, and
+the CIE 1931 2-degree colour-matching functions it tabulates (360-830 nm in 1 nm steps) that reduce them.
 
     tools/pbrt_named_spectra.py PBRT_V4_SPECTRUM_CPP > scenes/pbrt/named_spectra.cpp
 
@@ -98,8 +99,14 @@ def main():
         write_floats(ident, val)
         if uniform_step(lam) is None:
             write_floats(ident + '_nm', lam)
+    for axis in 'XYZ':
+        write_floats('kCie' + axis, arrays['CIE_' + axis])
     print()
     print('}  // namespace')
+    print()
+    print('CieObserverData cie_1931_data() {')
+    print(f'  return {{{cie_lambda[0]:.1f}f, kCieX, kCieY, kCieZ}};')
+    print('}')
     print()
     print('std::span<const NamedSpectrumData> named_spectra_data() {')
     print('  static constexpr NamedSpectrumData kTable[] = {')

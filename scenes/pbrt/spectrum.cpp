@@ -19,12 +19,6 @@ constexpr double kWienNmKelvin = 2.8977721e6;
 constexpr int kFitAngles = 8;
 constexpr int kFitIterations = 60;
 
-// One lobe of the fit: a Gaussian with different widths left and right of its centre.
-float lobe(float lambda, float mu, float sigma_left, float sigma_right) {
-  const float t = (lambda - mu) / (lambda < mu ? sigma_left : sigma_right);
-  return std::exp(-0.5f * t * t);
-}
-
 // Planck's spectral radiance (arbitrary scale) at lambda nm.
 double planck(double lambda_nm, double kelvin) {
   constexpr double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
@@ -198,11 +192,13 @@ float PiecewiseSpectrum::operator()(float nm) const {
 }
 
 Vec3f cie_xyz_matching(float l) {
-  const float x = 1.056f * lobe(l, 599.8f, 37.9f, 31.0f) + 0.362f * lobe(l, 442.0f, 16.0f, 26.7f) -
-                  0.065f * lobe(l, 501.1f, 20.4f, 26.2f);
-  const float y = 0.821f * lobe(l, 568.8f, 46.9f, 40.5f) + 0.286f * lobe(l, 530.9f, 16.3f, 31.1f);
-  const float z = 1.217f * lobe(l, 437.0f, 11.8f, 36.0f) + 0.681f * lobe(l, 459.0f, 26.0f, 13.8f);
-  return {x, y, z};
+  const CieObserverData cie = cie_1931_data();
+  const float i = l - cie.first_nm;
+  if (!(i >= 0.0f) || !(i <= float(cie.y.size() - 1))) return {0.0f, 0.0f, 0.0f};
+  const size_t j = std::min(size_t(i), cie.y.size() - 2);
+  const float t = i - float(j);
+  const auto at = [&](std::span<const float> f) { return f[j] + t * (f[j + 1] - f[j]); };
+  return {at(cie.x), at(cie.y), at(cie.z)};
 }
 
 Rgb xyz_to_linear_srgb(Vec3f c) {

@@ -14,9 +14,8 @@
 //     the per-channel (eta, k) whose Fresnel reflectance best matches, over the hemisphere, the reflectance the
 //     spectral conductor shows as a reflectance lit by D65 (least squares over 8 incidence angles spaced evenly in
 //     projected solid angle). Reducing eta and k separately instead makes gold's red up to 3% too dark.
-// XYZ uses the CIE 1931 2-degree observer through the analytic multi-lobe fit of Wyman, Sloan and Shirley
-// ("Simple Analytic Approximations to the CIE XYZ Color Matching Functions", JCGT 2(2), 2013), integrated over
-// 360-830 nm in 1 nm steps.
+// XYZ uses the tabulated CIE 1931 2-degree observer (the table pbrt-v4 integrates against), over 360-830 nm in
+// 1 nm steps.
 //
 // Named spectra: every one pbrt-v4 ships (scenes/pbrt/named_spectra.h: glasses, metals, standard illuminants,
 // camera sensor curves), from its tabulated data. Blackbodies: Planck's law normalised to a peak of 1, as pbrt-v4's
@@ -43,7 +42,8 @@ struct PiecewiseSpectrum {
   float operator()(float nm) const;
 };
 
-// CIE 1931 colour-matching functions (x-bar, y-bar, z-bar) at a wavelength in nanometres (analytic fit).
+// CIE 1931 colour-matching functions (x-bar, y-bar, z-bar) at a wavelength in nanometres: the tabulated 2-degree
+// observer (1 nm steps, linear between them, 0 outside 360-830 nm).
 Vec3f cie_xyz_matching(float lambda_nm);
 Rgb xyz_to_linear_srgb(Vec3f xyz);
 // Chromaticity (x, y) at luminance 1 as linear sRGB.
