@@ -84,21 +84,42 @@ enum class MaterialType { Plain, Mirror, Dielectric, Conductor };
 
 // pbrt-v4 materials (scenes/pbrt/materials.cpp fills this, scenes/material_mapping builds it). Spectral parameters are
 // already reduced to linear RGB by the loader.
-enum class PbrtMaterialKind { Diffuse, Conductor, Dielectric, CoatedDiffuse, Interface };
+enum class PbrtMaterialKind {
+  Diffuse,
+  Conductor,
+  Dielectric,
+  CoatedDiffuse,
+  CoatedConductor,
+  DiffuseTransmission,
+  ThinDielectric,
+  Interface
+};
 struct PbrtMaterialDesc {
   PbrtMaterialKind kind = PbrtMaterialKind::Diffuse;
-  Rgb reflectance{0.5f};                     // diffuse, coateddiffuse
-  std::optional<Rgb> conductor_reflectance;  // conductor given by "reflectance" instead of eta / k
-  Rgb conductor_eta{0.2f, 0.92f, 1.1f};      // conductor complex IOR (pbrt's default is copper)
+  Rgb reflectance{0.5f};                     // diffuse, coateddiffuse, diffusetransmission
+  Rgb transmittance{0.25f};                  // diffusetransmission
+  float scale = 1.0f;                        // diffusetransmission: multiplies reflectance and transmittance
+  std::optional<Rgb> conductor_reflectance;  // (coated) conductor given by "reflectance" instead of eta / k
+  Rgb conductor_eta{0.2f, 0.92f, 1.1f};      // (coated) conductor complex IOR (pbrt's default is copper)
   Rgb conductor_k{3.91f, 2.45f, 2.14f};
-  float eta = 1.5f;                          // dielectric / coateddiffuse interface IOR
-  float uroughness = 0.0f, vroughness = 0.0f;  // as written in the file ("roughness" sets both)
+  float eta = 1.5f;  // dielectric / thindielectric IOR, coateddiffuse / coatedconductor interface IOR
+  float uroughness = 0.0f, vroughness = 0.0f;  // as written in the file ("roughness" sets both); coatedconductor:
+                                               // the interface's
+  float conductor_uroughness = 0.0f, conductor_vroughness = 0.0f;  // coatedconductor: the conductor's
   bool remap_roughness = true;
-  float thickness = 0.01f;                   // coateddiffuse layer
-  Rgb albedo{0.0f};                          // coateddiffuse medium albedo
-  float g = 0.0f;                            // coateddiffuse Henyey-Greenstein asymmetry
-  int max_depth = 10;                        // coateddiffuse random-walk length
-  int n_samples = 1;                         // coateddiffuse estimator samples
+  float thickness = 0.01f;  // coated layers
+  Rgb albedo{0.0f};         // coated layers' medium albedo
+  float g = 0.0f;           // coated layers' Henyey-Greenstein asymmetry
+  int max_depth = 10;       // coated layers' random-walk length
+  int n_samples = 1;        // coated layers' estimator samples
+};
+
+// A material that is one of two others at each hit (pbrt-v4 "mix"): the second with probability `amount`, chosen
+// by a hash of the hit so that the image is the blend in expectation. Components may be mixes themselves (no
+// cycles: the loader rejects them).
+struct MaterialMixDesc {
+  std::array<int, 2> materials{-1, -1};  // indices into SceneDesc::materials
+  float amount = 0.5f;
 };
 
 struct MaterialDesc {
@@ -115,6 +136,7 @@ struct MaterialDesc {
   bool degamma = false;
   bool has_refraction_index = false;
   std::optional<PbrtMaterialDesc> pbrt;  // set by the pbrt-v4 loader; the fields above are then unused
+  std::optional<MaterialMixDesc> mix;    // a per-hit choice between two materials; every other field is unused
 };
 
 // Triangle mesh in object space. Indices are 0-based triplets into positions.

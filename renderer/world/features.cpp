@@ -17,6 +17,7 @@ std::string describe_features(uint32_t mask) {
       {kFeatureEnvironmentMap, "environment-map"},  {kFeatureBackfaceCulling, "backface-culling"},
       {kFeatureQuadrics, "quadrics"},       {kFeatureQuadricLights, "quadric-lights"},
       {kFeatureAlpha, "alpha"},
+      {kFeatureMix, "mix"},
   };
   std::string s;
   for (const auto& [bit, name] : kNames)

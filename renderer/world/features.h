@@ -28,6 +28,7 @@ enum Feature : uint32_t {
   kFeatureQuadrics = 1u << 18,        // pbrt disks, cylinders and partial spheres (user geometry)
   kFeatureQuadricLights = 1u << 19,   // emitting quadrics
   kFeatureAlpha = 1u << 20,           // alpha cut-outs: the accelerators test shapes' opacity at candidate hits
+  kFeatureMix = 1u << 21,             // mix materials: each hit chooses one of a mix's components (World::mixes)
   kFeatureAll = 0xffffffffu,
 };
 

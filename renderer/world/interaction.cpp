@@ -133,7 +133,11 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   si.t = hit.t;
   si.shape = hit.shape;
   si.prim = hit.prim;
-  si.material = sd.material >= 0 ? &world.materials[size_t(sd.material)] : nullptr;
+  if (sd.material >= 0) {
+    const int m = world.features & kFeatureMix ? choose_mixed_material(world.mixes, sd.material, si.p, -ray.d)
+                                                : sd.material;
+    si.material = &world.materials[size_t(m)];
+  }
   si.light = sd.light;
   if (sd.normals >= 0) {
     const Vec3f ns = smooth_normal<kMeshesOnly>(world, sd, hit);

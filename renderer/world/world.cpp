@@ -167,12 +167,18 @@ class WorldBuilder {
     for (const MaterialDesc& m : scene_.materials) {
       w_.materials.push_back(build_material(m, scene_));
       const Material& built = w_.materials.back();
+      if (m.mix) {  // shades as its components, which are materials of their own
+        ++w_.stats.compiled_materials["mix"];
+        continue;
+      }
       ++w_.stats.compiled_materials[built.describe()];
       if (built.surface_flags() & kLobeGlossy) w_.features |= kFeatureGlossy;
       if (built.has_delta()) w_.features |= kFeatureDelta;
       if (built.oriented()) w_.features |= kFeatureDielectric;
     }
     w_.stats.materials = w_.materials.size();
+    w_.mixes = build_material_mixes(scene_);
+    if (!w_.mixes.empty()) w_.features |= kFeatureMix;
   }
 
   // Only for scenes that have textures; their OpenImageIO TextureSystem only when one is an image.

@@ -13,6 +13,7 @@
 #include "materials/material.h"
 #include "renderer/accel/accelerator.h"
 #include "renderer/world/features.h"
+#include "renderer/world/material_mix.h"
 #include "renderer/image_io/image_plugin.h"
 #include "renderer/accel/geometry.h"
 #include "scenes/scene.h"
@@ -55,6 +56,7 @@ struct World {
   std::unique_ptr<SceneTextures> textures;      // only for scenes with textures (renderer/texture/scene_textures.h)
   std::unique_ptr<AlphaCutouts> alpha;          // only for scenes with alpha cut-outs (renderer/world/alpha_cutouts.h)
   std::vector<Material> materials;
+  std::vector<MaterialMix> mixes;  // one per material for scenes with mix materials (kFeatureMix), else empty
   std::vector<Light> lights;
   std::vector<int> infinite_lights;  // indices into lights of what rays that leave the scene see
   LightSampler light_sampler;

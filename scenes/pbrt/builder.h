@@ -5,9 +5,11 @@
 // scenes/pbrt/camera.h. Everything a builder cannot render is reported through PbrtDiagnostics.
 #pragma once
 #include <functional>
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/transform.h"
 #include "scenes/pbrt/diagnostics.h"
@@ -22,6 +24,8 @@ inline constexpr float kPbrtDefaultDielectricEta = 1.5f;
 inline constexpr float kPbrtDefaultSpotConeAngle = 30.0f, kPbrtDefaultSpotConeDelta = 5.0f;
 inline constexpr float kPbrtDefaultCoatThickness = 0.01f;
 inline constexpr int kPbrtDefaultCoatMaxDepth = 10;
+inline constexpr float kPbrtDefaultDiffuseTransmission = 0.25f;  // both "reflectance" and "transmittance"
+inline constexpr float kPbrtDefaultMixAmount = 0.5f;
 
 // An AreaLightSource in effect: the shapes that follow emit it.
 struct PbrtAreaLight {
@@ -65,6 +69,9 @@ class PbrtBuilder {
   std::optional<int> named_material(const std::string& name) const;
   // pbrt's default material (diffuse, reflectance 0.5), made on first use; `file` names the scene in messages.
   int default_material(const std::string& file);
+  // Once the whole scene is read: the names of "mix" materials' components (error: a missing one, or mixes that
+  // contain each other, at the mix's line).
+  void resolve_mixes();
 
   // Textures (scenes/pbrt/textures.cpp).
   void make_texture(const std::string& name, const std::string& type, const std::string& cls, const PbrtParams& ps);
@@ -85,9 +92,16 @@ class PbrtBuilder {
   const PbrtTextureDef& texture_def(const PbrtParams& ps, const std::string& name) const;
   void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex,
                             const PbrtTextureDef& t);
-  void read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm);
+  // "<prefix>roughness", "<prefix>uroughness", "<prefix>vroughness".
+  void read_roughness(const PbrtParams& ps, const std::string& prefix, float& u, float& v);
+  float interface_eta(const PbrtParams& ps, const std::string& name);
+  void read_conductor(const PbrtParams& ps, const std::string& prefix, PbrtMaterialDesc& pm);
+  RgbComplexIor conductor_ior_param(const PbrtParams& ps, const std::string& eta_name, const std::string& k_name);
+  void read_layers(const PbrtParams& ps, PbrtMaterialDesc& pm);
+  void read_mix(const PbrtParams& ps, MaterialDesc& d);
+  std::vector<int> mix_cycle_from(int material) const;
+  std::string material_name(int material) const;
   PbrtFloatImage read_float_image(const std::string& name, const PbrtParams& ps);
-  float interface_eta(const PbrtParams& ps);
 
   Rgb light_spectrum(const PbrtParams& ps, const std::string& name);
   void infinite_light(const PbrtParams& ps, float scale, const Transform& light_to_world);
@@ -98,6 +112,15 @@ class PbrtBuilder {
   PbrtDiagnostics diag_;
   PbrtResolver resolve_;
   std::map<std::string, int> named_materials_;
+  // A mix whose component names are resolved at the end (they may be defined after it).
+  struct PendingMix {
+    int material;
+    std::array<std::string, 2> names;
+    std::string file, context;
+    int line;
+    std::string where() const { return "line " + std::to_string(line) + " (" + context + ")"; }
+  };
+  std::vector<PendingMix> pending_mixes_;
   std::map<std::string, PbrtTextureDef> textures_;
   int default_material_ = -1;
 };

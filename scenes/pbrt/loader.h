@@ -11,7 +11,11 @@
 //     (default 5; pbrt and Kiln count bounces alike);
 //   * shapes: scenes/pbrt/shapes.h (meshes, spheres, the quadrics disk / cylinder / partial sphere into
 //     SceneDesc::quadrics, "alpha" cut-outs: scenes/pbrt/alpha.cpp); materials into MaterialDesc::pbrt
-//     (scenes/scene.h), "diffuse" also as a Kiln Lambert BRDF; named materials; constant textures (others warned);
+//     (scenes/scene.h): diffuse, conductor, dielectric, thindielectric, coateddiffuse, coatedconductor,
+//     diffusetransmission, interface; "mix" into MaterialDesc::mix, its components named by MakeNamedMaterial before
+//     or after it (resolved at the end of the file); measured, hair and subsurface are warned and rendered as pbrt's
+//     default diffuse; named materials; constant textures (others warned); spectra (named, inline, .spd files,
+//     blackbody) by scenes/pbrt/spectrum.h;
 //   * lights: AreaLightSource "diffuse" (L x scale, twosided) on meshes, spheres and quadrics, LightSource point,
 //     spot, distant (from / to, pbrt's smoothstep spot falloff, "power" / "illuminance" as pbrt normalises them) and
 //     infinite with a constant L (SceneDesc::infinite_lights) or an equal-area image "filename"

@@ -596,6 +596,8 @@ class PbrtParser {
   }
 
   void finish() {
+    include_trace_.clear();  // every file is closed: errors from here on name their own file and line
+    builder_.resolve_mixes();
     const std::string end = "line " + std::to_string(root_end_line_);
     if (current_object_)
       throw Error(root_path_, end,
