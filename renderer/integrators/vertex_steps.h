@@ -54,9 +54,10 @@ inline bool resolve_material(const RenderContext& ctx, SurfaceInteraction& si, M
 
 // Normals turned to the side the path arrived from (wo). A path that leaves a dielectric is attenuated by what it
 // crossed inside; oriented materials keep their outward normals (renderer/integrators/shading.h). Without
-// dielectrics in the scene every surface is two-sided.
+// dielectrics in the scene every surface is two-sided. Always inlined: called out of line, the path's throughput
+// would live in memory across the call (1% more instructions on the default scene).
 template <bool kDielectric>
-void orient_at_vertex(SurfaceInteraction& si, Vec3f wo, PathState& p) {
+[[gnu::always_inline]] inline void orient_at_vertex(SurfaceInteraction& si, Vec3f wo, PathState& p) {
   if constexpr (kDielectric) {
     if (exits_dielectric(si, p.ray.d)) p.beta *= si.material->transmittance(si.t * length(p.ray.d));
     orient_normals(si, wo);
