@@ -1,23 +1,13 @@
 // kiln: command-line entry point. Every option has a help string; bad input exits with code 2.
 #include <CLI/CLI.hpp>
-#include <oneapi/tbb/global_control.h>
-
-#include <new>
 
 #include "core/error.h"
+#include "core/worker_threads.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/converge.h"
 #include "renderer/cli/profile.h"
 
 namespace {
-// TBB's worker threads are joined before main returns. Left to TBB's own exit-time shutdown, a worker can still be
-// tearing itself down while the process's exit handlers run; LeakSanitizer's exit check then reads a half-destroyed
-// thread and crashes (seen as "Tracer caught signal 11" and exit 1 after a correct render).
-struct JoinWorkerThreadsOnReturn {
-  oneapi::tbb::task_scheduler_handle scheduler{oneapi::tbb::attach{}};
-  ~JoinWorkerThreadsOnReturn() { (void)oneapi::tbb::finalize(scheduler, std::nothrow); }
-};
-
 constexpr const char* kLightSamplerHelp =
     "How next event estimation chooses lights (Kiln's rules): bvh (the light hierarchy: by importance at the shading "
     "point, mesh lights triangle by triangle), power (in proportion to power) or uniform. Default: bvh when the scene "
