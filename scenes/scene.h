@@ -9,6 +9,7 @@
 
 #include "core/color.h"
 #include "core/transform.h"
+#include "scenes/texture_graph.h"
 
 namespace kiln {
 
@@ -82,23 +83,44 @@ struct BrdfDesc {
 enum class MaterialType { Plain, Mirror, Dielectric, Conductor };
 
 // pbrt-v4 materials (scenes/pbrt/materials.cpp fills this, scenes/material_mapping builds it). Spectral parameters are
-// already reduced to linear RGB by the loader.
+// already reduced to linear RGB by the loader. A parameter pbrt lets a texture set is a TexturedFloat / TexturedRgb:
+// untextured, its value is the parameter; textured, the material is built again at every hit from the textures'
+// values there (renderer/texture/textured_material.h).
 enum class PbrtMaterialKind { Diffuse, Conductor, Dielectric, CoatedDiffuse, Interface };
 struct PbrtMaterialDesc {
   PbrtMaterialKind kind = PbrtMaterialKind::Diffuse;
-  Rgb reflectance{0.5f};                     // diffuse, coateddiffuse
-  std::optional<Rgb> conductor_reflectance;  // conductor given by "reflectance" instead of eta / k
-  Rgb conductor_eta{0.2f, 0.92f, 1.1f};      // conductor complex IOR (pbrt's default is copper)
-  Rgb conductor_k{3.91f, 2.45f, 2.14f};
-  float eta = 1.5f;                          // dielectric / coateddiffuse interface IOR
-  float uroughness = 0.0f, vroughness = 0.0f;  // as written in the file ("roughness" sets both)
+  TexturedRgb reflectance{Rgb(0.5f)};        // diffuse, coateddiffuse
+  bool conductor_by_reflectance = false;     // conductor given by "reflectance" (conductor_reflectance) instead of eta / k
+  TexturedRgb conductor_reflectance{Rgb(1.0f)};
+  TexturedRgb conductor_eta{Rgb(0.2f, 0.92f, 1.1f)};  // conductor complex IOR (pbrt's default is copper)
+  TexturedRgb conductor_k{Rgb(3.91f, 2.45f, 2.14f)};
+  TexturedFloat eta{1.5f};                   // dielectric / coateddiffuse interface IOR
+  TexturedFloat uroughness{0.0f}, vroughness{0.0f};  // as written in the file ("roughness" sets both)
   bool remap_roughness = true;
-  float thickness = 0.01f;                   // coateddiffuse layer
-  Rgb albedo{0.0f};                          // coateddiffuse medium albedo
-  float g = 0.0f;                            // coateddiffuse Henyey-Greenstein asymmetry
+  TexturedFloat thickness{0.01f};            // coateddiffuse layer
+  TexturedRgb albedo{Rgb(0.0f)};             // coateddiffuse medium albedo
+  TexturedFloat g{0.0f};                     // coateddiffuse Henyey-Greenstein asymmetry
   int max_depth = 10;                        // coateddiffuse random-walk length
   int n_samples = 1;                         // coateddiffuse estimator samples
+  int displacement = -1;  // float texture (SceneDesc::pbrt_textures): bump mapping by its height along the normal
+  int normal_map = -1;    // image texture (SceneDesc::pbrt_textures): a tangent-space normal map
 };
+
+// Calls f on every parameter of d (a PbrtMaterialDesc, const or not) that a texture may set (TexturedFloat /
+// TexturedRgb): what the per-hit evaluation fills in. A new texturable parameter must be listed here.
+template <typename Desc, typename F>
+void for_each_texturable(Desc& d, F&& f) {
+  f(d.reflectance);
+  f(d.conductor_reflectance);
+  f(d.conductor_eta);
+  f(d.conductor_k);
+  f(d.eta);
+  f(d.uroughness);
+  f(d.vroughness);
+  f(d.thickness);
+  f(d.albedo);
+  f(d.g);
+}
 
 struct MaterialDesc {
   int id = 0;
@@ -239,6 +261,7 @@ struct SceneDesc {
   // default (README, "Course conventions").
   std::optional<bool> backface_culling;
   std::vector<TextureDesc> textures;
+  std::vector<PbrtTextureDesc> pbrt_textures;  // pbrt-v4 texture graphs (scenes/texture_graph.h), read only when used
   std::optional<int> background_texture;  // index into textures: what camera rays that miss see (replace_background)
   bool png_gamma_encode = false;  // CS171: the PNG preview applies gamma 2.2 (no tonemap)
   // Files the render reads that the loader does not read itself (texture images, environment maps, volume grids):

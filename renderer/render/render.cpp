@@ -81,7 +81,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
                       " (adaptive renders cannot be split into sample ranges)");
   const PixelFilter filter(options.filter);
   // Texture footprints are measured in this camera's pixels (the world outlives one render; set, not built).
-  if (world.textures) world.textures->set_camera(camera.pixel_spread());
+  if (world.textures) world.textures->set_camera(camera.pixel_spread(), options.spp_total);
   std::vector<RenderStats> tile_stats(tiles.size());
   Progress progress(options.progress, tiles.size());
   // One task per tile; work stealing balances uneven tiles.

@@ -1,28 +1,20 @@
 #include "renderer/texture/scene_textures.h"
 
-#include <atomic>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
 
 #include "core/error.h"
 #include "core/frame.h"
-#include "renderer/world/interaction.h"
+#include "renderer/texture/bump_map.h"
 #include "renderer/texture/checkerboard.h"
+#include "renderer/world/interaction.h"
 #include "renderer/texture/perlin.h"
 #include "scenes/material_mapping.h"
 
 namespace kiln {
 namespace {
-
-std::atomic<uint64_t> g_next_generation{1};
-
-// The calling thread's OpenImageIO Perthread record of the system it last used.
-struct ThreadTextureInfo {
-  uint64_t generation = 0;
-  void* info = nullptr;
-};
-thread_local ThreadTextureInfo t_info;
 
 // Reflectances of a copied prototype: k_d / k_s of the course BRDFs, a Lambertian's albedo per unit k_d.
 void set_reflectances(Material& m, Rgb kd, Rgb ks, float lambert_scale) {
@@ -51,13 +43,6 @@ void tangent_frame(Vec3f n, Vec3f dpdu, Vec3f dpdv, Vec3f& t, Vec3f& b) {
   }
 }
 
-// Keeps a perturbed normal on the geometric side of n (a bump cannot turn the surface over).
-Vec3f unit_on_side(Vec3f v, Vec3f n) {
-  if (!(length_squared(v) > 0.0f)) return n;
-  v = normalize(v);
-  return dot(v, n) > 0.0f ? v : n;
-}
-
 TextureInterp interp_of(TextureFilter f) {
   switch (f) {
     case TextureFilter::Nearest: return TextureInterp::Closest;
@@ -76,7 +61,7 @@ bool filtered(const CompiledTexture& t) {
 }  // namespace
 
 SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions& options)
-    : generation_(g_next_generation.fetch_add(1)) {
+    : images_(options), graph_(scene.pbrt_textures, scene.source_path, images_) {
   textures_.reserve(scene.textures.size());
   for (const TextureDesc& d : scene.textures) {
     CompiledTexture t;
@@ -93,18 +78,9 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
     t.white = d.white;
     t.normalizer = d.normalizer.value_or(1.0f);
     if (d.source == TextureSource::Image) {
-      if (!owner_.system) {
-        owner_.api = &image_plugin(scene.source_path);
-        std::string error;
-        owner_.system = owner_.api->texture_system_create(options, error);
-        if (!owner_.system) throw Error(scene.source_path, d.name, error);
-        stats_.texture_system_built = true;
-        stats_.cache_limit_mb = options.max_memory_mb;
-      }
-      TextureFileInfo info;
-      std::string error;
-      t.handle = owner_.api->texture_open(owner_.system, d.image_path, info, error);
-      if (!t.handle) throw Error(scene.source_path, d.name, "image '" + d.image_path + "': " + error);
+      const OpenedImage image = images_.open(d.image_path, TextureDecode{}, scene.source_path, d.name);
+      const TextureFileInfo& info = image.info;
+      t.handle = image.handle;
       t.query.interp = interp_of(d.filter);
       t.query.wrap = d.wrap == TextureWrap::Clamp ? TextureWrapMode::Clamp : TextureWrapMode::Periodic;
       t.value_scale = info.format_max / d.normalizer.value_or(info.format_max);
@@ -121,12 +97,28 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
   stats_.textures = textures_.size();
   if (scene.background_texture) background_ = *scene.background_texture;
   material_of_desc_.assign(scene.materials.size() * 4, -1);
+  pbrt_material_of_desc_.assign(scene.materials.size(), -1);
 }
 
 SceneTextures::~SceneTextures() = default;
 
-SceneTextures::SystemOwner::~SystemOwner() {
-  if (system) api->texture_system_destroy(system);
+float footprint_scale_for_spp(uint32_t samples_per_pixel) {
+  return std::max(kMinPbrtFootprintScale, 1.0f / std::sqrt(float(std::max(samples_per_pixel, 1u))));
+}
+
+bool material_needs_textures(const SceneDesc& scene, int material) {
+  if (material < 0 || size_t(material) >= scene.materials.size()) return false;
+  const auto& pbrt = scene.materials[size_t(material)].pbrt;
+  return pbrt && needs_per_hit_evaluation(*pbrt);
+}
+
+TextureBuildStats SceneTextures::stats() const {
+  TextureBuildStats s = stats_;
+  s.texture_system_built = images_.built();
+  s.cache_limit_mb = images_.built() ? images_.cache_limit_mb() : 0.0f;
+  s.pbrt = graph_.stats();
+  s.textured_materials = pbrt_materials_.size();
+  return s;
 }
 
 int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures, int material,
@@ -146,6 +138,15 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
       case DecalMode::ReplaceBackground: break;
     }
     if (t.bump) b.bump = i, any = true;
+  }
+  if (material_needs_textures(scene, material)) {
+    int& slot = pbrt_material_of_desc_[size_t(material)];
+    if (slot < 0) {
+      pbrt_materials_.push_back(make_textured_material(*scene.materials[size_t(material)].pbrt, graph_));
+      slot = int(pbrt_materials_.size()) - 1;
+    }
+    b.pbrt_material = slot;
+    any = true;
   }
   if (!any) return -1;
   for (const int i : {b.kd, b.ks, b.all})
@@ -178,7 +179,6 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
 }
 
 Rgb SceneTextures::image_value(const CompiledTexture& t, Vec2f uv, const UvFootprint& fp) const {
-  if (t_info.generation != generation_) t_info = {generation_, owner_.api->texture_thread_info(owner_.system)};
   TextureQuery q = t.query;
   q.s = uv.x;
   q.t = uv.y;
@@ -188,8 +188,8 @@ Rgb SceneTextures::image_value(const CompiledTexture& t, Vec2f uv, const UvFootp
     q.dsdy = fp.dudy;
     q.dtdy = fp.dvdy;
   }
-  float rgb[3];
-  owner_.api->texture_lookup(owner_.system, t.handle, t_info.info, q, rgb);
+  float rgb[4];
+  images_.lookup(t.handle, q, rgb);
   if (t.grey) rgb[1] = rgb[2] = rgb[0];
   return Rgb(rgb[0], rgb[1], rgb[2]) * t.value_scale;
 }
@@ -243,20 +243,40 @@ Vec3f SceneTextures::mapped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, 
   return unit_on_side(tu * (2.0f * c.r - 1.0f) + tv * (2.0f * c.g - 1.0f) + n * (2.0f * c.b - 1.0f), n);
 }
 
-TextureCacheStats SceneTextures::cache_stats() const {
-  TextureCacheStats s;
-  if (owner_.system) owner_.api->texture_stats(owner_.system, s);
-  return s;
-}
-
 UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si) {
   Vec3f dpdx, dpdy;
   approximate_dp_dxy(camera, si.p, si.ng, dpdx, dpdy);
   return uv_footprint(dpdx, dpdy, si.dpdu, si.dpdv);
 }
 
-bool apply_textures(const SceneTextures& tex, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
+namespace {
+
+// The hit as pbrt-v4 textures see it; the footprint only when a texture reads it.
+TextureEvalContext pbrt_eval_context(const SceneTextures& tex, const SurfaceInteraction& si, bool footprint) {
+  TextureEvalContext c;
+  c.p = si.p;
+  c.n = si.ng;
+  c.uv = si.uv;
+  if (footprint) {
+    approximate_dp_dxy(tex.camera(), si.p, si.ng, c.dpdx, c.dpdy);
+    c.dpdx = c.dpdx * tex.pbrt_footprint_scale();
+    c.dpdy = c.dpdy * tex.pbrt_footprint_scale();
+    c.fp = uv_footprint(c.dpdx, c.dpdy, si.dpdu, si.dpdv);
+  }
+  return c;
+}
+
+}  // namespace
+
+bool apply_textures(const World& w, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
+  const SceneTextures& tex = *w.textures;
   const TextureBinding& b = tex.bindings()[size_t(si.textures)];
+  if (b.pbrt_material >= 0) {
+    const TexturedPbrtMaterial& m = tex.pbrt_materials()[size_t(b.pbrt_material)];
+    const bool smooth = w.shape_data[si.shape].normals >= 0;
+    resolve_textured_material(tex.graph(), m, pbrt_eval_context(tex, si, m.needs_footprint), smooth, si, scratch);
+    return false;
+  }
   const Vec3f p = b.to_object.point(si.p);  // where procedural textures are evaluated
   // Only bindings with a filtered colour texture pay for a footprint (bump and normal maps read the finest level).
   const UvFootprint fp = b.footprint ? hit_footprint(tex.camera(), si) : UvFootprint{};

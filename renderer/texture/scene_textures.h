@@ -1,6 +1,10 @@
 // The textures of one scene, compiled for shading (CENG795 spec §8; README "Textures"). Built only for scenes with
-// textures; the OpenImageIO TextureSystem (through the plugin, renderer/image_io/image_plugin.h) only when one of them is an
-// image.
+// course textures or with a rendered pbrt-v4 material that needs per-hit evaluation; the OpenImageIO TextureSystem
+// (through the plugin, renderer/image_io/image_plugin.h) only when one of the textures used is an image.
+//
+// pbrt-v4 materials whose parameters are textured, or that carry a displacement or normal map, are bound to the
+// shapes that use them and resolved at each hit (renderer/texture/textured_material.h) from the scene's texture graph
+// (renderer/texture/texture_graph.h); only the textures such a material reads are compiled.
 //
 // Per hit, a shape's binding says what its textures do: replace or blend k_d, replace k_s, replace the whole
 // shading (replace_all), bump (height (R+G+B)/3 of an image, or Perlin noise) or replace the shading normal
@@ -17,11 +21,15 @@
 #include "materials/material.h"
 #include "renderer/image_io/image_plugin.h"
 #include "renderer/texture/footprint.h"
+#include "renderer/texture/image_textures.h"
+#include "renderer/texture/texture_graph.h"
+#include "renderer/texture/textured_material.h"
 #include "scenes/scene.h"
 
 namespace kiln {
 
 struct SurfaceInteraction;
+struct World;
 
 struct CompiledTexture {
   TextureSource source = TextureSource::Image;
@@ -50,6 +58,7 @@ struct TextureBinding {
   bool blend_kd = false;
   bool footprint = false;  // the kd, ks or all texture is filtered over the hit's footprint (trilinear / ewa)
   int material = -1;  // index into SceneTextures::materials (the texturable prototype) or -1: no k_d / k_s texture
+  int pbrt_material = -1;  // index into SceneTextures::pbrt_materials: a pbrt-v4 material resolved per hit
   // Procedural textures are evaluated in the object's own space (the course's: veach-ajar's floor, scaled 1.8x along
   // x by its transformation, has squares 1.8x wider along x in its reference).
   Transform to_object;
@@ -69,7 +78,15 @@ struct TextureBuildStats {
   size_t footprint_bindings = 0;  // bindings that compute a hit's footprint (a filtered k_d / k_s / replace_all)
   bool texture_system_built = false;
   float cache_limit_mb = 0.0f;
+  TextureGraphStats pbrt;         // pbrt-v4 textures: defined, compiled (used by a rendered material), images
+  size_t textured_materials = 0;  // pbrt-v4 materials resolved per hit
 };
+
+// pbrt-v4 scales a hit's footprint by max(1/8, 1/sqrt(spp)): with many samples per pixel the pixel filter already
+// averages the texture, so it is filtered over less than a pixel. Applied to pbrt-v4 textures only (the course
+// textures' filtering is the course's).
+float footprint_scale_for_spp(uint32_t samples_per_pixel);
+inline constexpr float kMinPbrtFootprintScale = 0.125f;
 
 class SceneTextures {
  public:
@@ -80,7 +97,8 @@ class SceneTextures {
   SceneTextures& operator=(const SceneTextures&) = delete;
 
   // A binding for a shape with these textures (indices into SceneDesc::textures) and material; -1 when they do nothing
-  // to a surface (e.g. only a background texture).
+  // to a surface (e.g. only a background texture) and the material needs no per-hit evaluation. A pbrt-v4 material's
+  // textures are compiled here (their images opened: may throw kiln::Error naming the texture).
   int bind(const SceneDesc& scene, const std::vector<int>& textures, int material, const Transform& to_world);
 
   // Texture value at a hit (colour, normalised, degamma applied); p in the object's own space. Filtered images
@@ -97,16 +115,24 @@ class SceneTextures {
   const std::vector<CompiledTexture>& textures() const { return textures_; }
   const std::vector<TextureBinding>& bindings() const { return bindings_; }
   const std::vector<TexturableMaterial>& materials() const { return materials_; }
+  const std::vector<TexturedPbrtMaterial>& pbrt_materials() const { return pbrt_materials_; }
+  const TextureGraph& graph() const { return graph_; }
   int background() const { return background_; }
   // What a camera ray that misses every surface sees at film position `film` (the pixel centre in [0, 1]^2, x to the
   // right, y down; renderer/integrators/integrator.h): the replace_background texture there, Normalizer and degamma applied as
   // for every texture. A procedural one is evaluated at the point (u, v, 0) of the image plane.
   Rgb background_value(Vec2f film) const { return value(background_, film, Vec3f(film.x, film.y, 0.0f)); }
-  const TextureBuildStats& stats() const { return stats_; }
-  // The camera whose pixels footprints are measured in: set before rendering with it (render_samples does).
-  void set_camera(const CameraSpread& camera) { camera_ = camera; }
+  TextureBuildStats stats() const;
+  // The camera whose pixels footprints are measured in: set before rendering with it (render_samples does), with
+  // the render's samples per pixel (pbrt-v4 narrows its textures' footprints as the samples grow: see
+  // footprint_scale_for_spp).
+  void set_camera(const CameraSpread& camera, uint32_t samples_per_pixel = 1) {
+    camera_ = camera;
+    pbrt_footprint_scale_ = footprint_scale_for_spp(samples_per_pixel);
+  }
   const CameraSpread& camera() const { return camera_; }
-  TextureCacheStats cache_stats() const;
+  float pbrt_footprint_scale() const { return pbrt_footprint_scale_; }
+  TextureCacheStats cache_stats() const { return images_.cache_stats(); }
 
  private:
   Rgb image_value(const CompiledTexture& t, Vec2f uv, const UvFootprint& fp) const;
@@ -116,27 +142,28 @@ class SceneTextures {
   std::vector<TextureBinding> bindings_;
   std::vector<TexturableMaterial> materials_;
   std::vector<int> material_of_desc_;  // SceneDesc material -> materials_ index (built on first use)
+  std::vector<TexturedPbrtMaterial> pbrt_materials_;
+  std::vector<int> pbrt_material_of_desc_;  // SceneDesc material -> pbrt_materials_ index (made on first use)
   int background_ = -1;
-  // Owns the plugin's TextureSystem: a member, so that a constructor which throws after creating it still frees it.
-  struct SystemOwner {
-    const ImagePluginApi* api = nullptr;
-    void* system = nullptr;
-    SystemOwner() = default;
-    SystemOwner(const SystemOwner&) = delete;
-    SystemOwner& operator=(const SystemOwner&) = delete;
-    ~SystemOwner();
-  } owner_;
-  uint64_t generation_ = 0;  // tells a thread's cached record of this world from one of an earlier world's
+  // A member declared before everything that opens images, so that a constructor which throws after the texture
+  // system exists still frees it.
+  TextureImages images_;
+  TextureGraph graph_;
   TextureBuildStats stats_;
   CameraSpread camera_;
+  float pbrt_footprint_scale_ = 1.0f;
 };
+
+// Whether a shape with this material (an index into SceneDesc::materials) needs the scene's textures although it has
+// no course textures: a pbrt-v4 material evaluated per hit.
+bool material_needs_textures(const SceneDesc& scene, int material);
 
 // The footprint of a hit in its texture coordinates, from the camera's pixel spread (renderer/texture/footprint.h).
 UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si);
 
-// Shading at a textured hit: sets si.material to `scratch` (the material with the texel's k_d / k_s) and bends
-// si.ns by bump or normal maps. Returns true when a replace_all texture gives the surface's colour outright
-// (`unlit`), without shading.
-bool apply_textures(const SceneTextures& textures, SurfaceInteraction& si, Material& scratch, Rgb& unlit);
+// Shading at a textured hit (si.textures >= 0) of world w: sets si.material to `scratch` (the material with the
+// texel's k_d / k_s, or a pbrt-v4 material built from its textures' values) and bends si.ns by bump or normal maps.
+// Returns true when a replace_all texture gives the surface's colour outright (`unlit`), without shading.
+bool apply_textures(const World& w, SurfaceInteraction& si, Material& scratch, Rgb& unlit);
 
 }  // namespace kiln

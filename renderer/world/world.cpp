@@ -118,13 +118,17 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   w.unsupported = scene.unsupported;
 
   w.materials.reserve(scene.materials.size());
-  for (const MaterialDesc& m : scene.materials) {
-    w.materials.push_back(build_material(m, scene));
-    const Material& built = w.materials.back();
-    ++w.stats.compiled_materials[built.describe()];
+  const auto note_features = [&](const Material& built) {
     if (built.surface_flags() & kLobeGlossy) w.features |= kFeatureGlossy;
     if (built.has_delta()) w.features |= kFeatureDelta;
     if (built.oriented()) w.features |= kFeatureDielectric;
+  };
+  for (const MaterialDesc& m : scene.materials) {
+    w.materials.push_back(build_material(m, scene));
+    ++w.stats.compiled_materials[w.materials.back().describe()];
+    note_features(w.materials.back());
+    if (m.pbrt && needs_per_hit_evaluation(*m.pbrt))  // what its textures may make of it at a hit
+      for (const Material& v : per_hit_variants(*m.pbrt)) note_features(v);
   }
   w.stats.materials = w.materials.size();
   if (!w.ambient.is_black()) w.features |= kFeatureAmbient;
@@ -139,13 +143,18 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     return true;
   };
 
-  // Textures: only for scenes that have them; their OpenImageIO TextureSystem only when one is an image.
-  if (!scene.textures.empty()) {
+  // Textures: only for scenes with course textures or a rendered shape whose pbrt material is resolved per hit;
+  // their OpenImageIO TextureSystem only when an image is used.
+  const auto make_textures = [&] {
+    if (w.textures) return;
     w.textures = std::make_unique<SceneTextures>(scene, options.texture_system);
     w.features |= kFeatureTextures;
-  }
+  };
+  if (!scene.textures.empty()) make_textures();
   const auto bind_textures = [&](const std::vector<int>& textures, int material, const Transform& to_world) {
-    return w.textures && !textures.empty() ? w.textures->bind(scene, textures, material, to_world) : -1;
+    if (textures.empty() && !material_needs_textures(scene, material)) return -1;
+    make_textures();
+    return w.textures->bind(scene, textures, material, to_world);
   };
 
   WorldGeometry& g = w.geometry;

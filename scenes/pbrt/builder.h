@@ -4,6 +4,7 @@
 // (scenes/pbrt/lights.cpp), each written into the SceneDesc. Shapes and cameras are made by scenes/pbrt/shapes.h and
 // scenes/pbrt/camera.h. Everything a builder cannot render is reported through PbrtDiagnostics.
 #pragma once
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -21,6 +22,9 @@ inline constexpr float kPbrtDefaultDielectricEta = 1.5f;
 inline constexpr float kPbrtDefaultSpotConeAngle = 30.0f, kPbrtDefaultSpotConeDelta = 5.0f;
 inline constexpr float kPbrtDefaultCoatThickness = 0.01f;
 inline constexpr int kPbrtDefaultCoatMaxDepth = 10;
+// Noise textures sum this many octaves at most (each is a Perlin evaluation at a frequency 1.99x the last, so more
+// would only cost time).
+inline constexpr int kPbrtMaxNoiseOctaves = 32;
 
 // An AreaLightSource in effect: the shapes that follow emit it.
 struct PbrtAreaLight {
@@ -28,17 +32,23 @@ struct PbrtAreaLight {
   bool two_sided = false;
 };
 
-// A named texture (Texture directive).
-struct PbrtTextureDef {
+// A named texture (Texture directive): float and spectrum textures have separate names, as in pbrt-v4.
+struct PbrtTextureKey {
+  std::string name;
   bool is_float = false;
-  std::string cls;
-  std::optional<float> value;  // constant float texture
-  std::optional<Rgb> rgb;      // constant spectrum texture
+  auto operator<=>(const PbrtTextureKey&) const = default;
 };
+struct PbrtTextureDef {
+  int index = -1;   // into SceneDesc::pbrt_textures; -1: a class Kiln does not render (warned), e.g. ptex
+  std::string cls;  // the class as written, for messages
+};
+
+// A file named in the scene, resolved as Include resolves it (a missing file throws, naming the file and line).
+using PbrtResolver = std::function<std::string(const std::string& name, const PbrtParams& ps)>;
 
 class PbrtBuilder {
  public:
-  explicit PbrtBuilder(SceneDesc& scene) : scene_(scene), diag_(scene) {}
+  PbrtBuilder(SceneDesc& scene, PbrtResolver resolve) : scene_(scene), diag_(scene), resolve_(std::move(resolve)) {}
   PbrtBuilder(const PbrtBuilder&) = delete;
   PbrtBuilder& operator=(const PbrtBuilder&) = delete;
 
@@ -53,8 +63,9 @@ class PbrtBuilder {
   // pbrt's default material (diffuse, reflectance 0.5), made on first use; `file` names the scene in messages.
   int default_material(const std::string& file);
 
-  // Textures (scenes/pbrt/textures.cpp).
-  void make_texture(const std::string& name, const std::string& type, const std::string& cls, const PbrtParams& ps);
+  // Textures (scenes/pbrt/textures.cpp). to_world: the transform in effect at the directive.
+  void make_texture(const std::string& name, const std::string& type, const std::string& cls, const PbrtParams& ps,
+                    const Transform& to_world);
 
   // Lights (scenes/pbrt/lights.cpp). light_to_world: the transform in effect at the directive.
   void make_light(const std::string& type, const PbrtParams& ps, const Transform& light_to_world);
@@ -62,22 +73,29 @@ class PbrtBuilder {
   std::optional<PbrtAreaLight> make_area_light(const std::string& type, const PbrtParams& ps);
 
  private:
-  // Material parameters that may name a texture: constant textures are read, others warned (the default is used).
-  float float_param(const PbrtParams& ps, const std::string& name, float def);
-  Rgb spectrum_param(const PbrtParams& ps, const std::string& name, SpectrumUse use, Rgb def);
-  const PbrtTextureDef& texture_def(const PbrtParams& ps, const std::string& name) const;
-  void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex,
-                            const PbrtTextureDef& t);
+  // Parameters that may name a texture (materials and texture operands): a constant, a constant texture's value, or
+  // the texture. A texture of a class Kiln does not render is warned and the default used.
+  TexturedFloat float_param(const PbrtParams& ps, const std::string& name, float def);
+  TexturedRgb spectrum_param(const PbrtParams& ps, const std::string& name, SpectrumUse use, Rgb def);
+  // The texture `tex` that parameter `param` names, of the kind the parameter needs; -1 when its class is not
+  // rendered (warned). A missing texture, or one of the other kind, throws naming the file and line.
+  int texture_ref(const PbrtParams& ps, const std::string& param, const std::string& tex, bool is_float);
+  void read_mapping(const PbrtParams& ps, const Transform& to_world, TextureMappingDesc& m);
+  void read_image_texture(const PbrtParams& ps, ImageTextureDesc& image);
+  int add_image_texture(const std::string& name, const ImageTextureDesc& image, bool is_float);
+  void read_operands(const PbrtParams& ps, PbrtTextureDesc& t);
   void read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm);
-  float interface_eta(const PbrtParams& ps);
+  TexturedFloat interface_eta(const PbrtParams& ps);
+  void read_bump(const PbrtParams& ps, PbrtMaterialDesc& pm);
 
   Rgb light_spectrum(const PbrtParams& ps, const std::string& name);
   void infinite_light(const PbrtParams& ps, float scale);
 
   SceneDesc& scene_;
   PbrtDiagnostics diag_;
+  PbrtResolver resolve_;
   std::map<std::string, int> named_materials_;
-  std::map<std::string, PbrtTextureDef> textures_;
+  std::map<PbrtTextureKey, PbrtTextureDef> textures_;
   int default_material_ = -1;
 };
 

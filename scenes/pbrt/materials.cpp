@@ -7,43 +7,17 @@
 
 namespace kiln {
 
-// A float parameter that may name a texture: constant textures are read, others warned (the default is used).
-float PbrtBuilder::float_param(const PbrtParams& ps, const std::string& name, float def) {
-  if (const auto tex = ps.find_texture(name)) {
-    const PbrtTextureDef& t = texture_def(ps, *tex);
-    if (t.is_float && t.value) return *t.value;
-    texture_not_rendered(ps, name, *tex, t);
-    return def;
-  }
-  return ps.get_float(name, def);
-}
-
-Rgb PbrtBuilder::spectrum_param(const PbrtParams& ps, const std::string& name, SpectrumUse use, Rgb def) {
-  if (const auto tex = ps.find_texture(name)) {
-    const PbrtTextureDef& t = texture_def(ps, *tex);
-    if (!t.is_float && t.rgb) {
-      if (use == SpectrumUse::Albedo && t.rgb->max_component() > 1.0f) {
-        diag_.warn(ps, "texture " + in_quotes(*tex) + " used as " + in_quotes(name) + " exceeds 1; clamped");
-        return Rgb(std::min(t.rgb->r, 1.0f), std::min(t.rgb->g, 1.0f), std::min(t.rgb->b, 1.0f));
-      }
-      return *t.rgb;
-    }
-    texture_not_rendered(ps, name, *tex, t);
-    return def;
-  }
-  return ps.find_spectrum(name, use).value_or(def);
-}
-
-
 void PbrtBuilder::read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm) {
-  const float r = float_param(ps, "roughness", 0.0f);
-  pm.uroughness = ps.has("uroughness") ? float_param(ps, "uroughness", r) : r;
-  pm.vroughness = ps.has("vroughness") ? float_param(ps, "vroughness", r) : r;
-  if (pm.uroughness < 0.0f || pm.vroughness < 0.0f) ps.fail(ps.line(), "roughness must not be negative");
+  const TexturedFloat r = float_param(ps, "roughness", 0.0f);
+  pm.uroughness = ps.has("uroughness") ? float_param(ps, "uroughness", r.value) : r;
+  pm.vroughness = ps.has("vroughness") ? float_param(ps, "vroughness", r.value) : r;
+  if (pm.uroughness.value < 0.0f || pm.vroughness.value < 0.0f) ps.fail(ps.line(), "roughness must not be negative");
   pm.remap_roughness = ps.get_bool("remaproughness", true);
 }
 
-float PbrtBuilder::interface_eta(const PbrtParams& ps) {
+// pbrt-v4's eta is a float or a spectrum; Kiln also takes a float texture.
+TexturedFloat PbrtBuilder::interface_eta(const PbrtParams& ps) {
+  if (ps.find_texture("eta")) return float_param(ps, "eta", kPbrtDefaultDielectricEta);
   bool spectral = false;
   const float eta = ps.find_float_or_spectrum("eta", &spectral).value_or(kPbrtDefaultDielectricEta);
   if (!(eta > 0.0f)) ps.fail(ps.line(), "\"eta\" must be positive");
@@ -51,23 +25,30 @@ float PbrtBuilder::interface_eta(const PbrtParams& ps) {
     diag_.warn(ps, "a spectral \"eta\" is rendered without dispersion (eta = " + std::to_string(eta) + ")");
     diag_.unsupported("dispersion (spectral eta)");
   }
-  return eta;
+  return {eta, -1};
+}
+
+// Bump mapping by a float texture ("displacement") or a tangent-space normal map image ("normalmap"); pbrt-v4 uses
+// the normal map when both are given.
+void PbrtBuilder::read_bump(const PbrtParams& ps, PbrtMaterialDesc& pm) {
+  if (ps.has("displacement")) {
+    const TexturedFloat d = float_param(ps, "displacement", 0.0f);
+    pm.displacement = d.texture;  // a constant displacement moves the surface without bending its normal
+  }
+  if (const auto file = ps.find_string("normalmap")) {
+    ImageTextureDesc image;
+    image.path = resolve_(*file, ps);
+    image.encoding = ImageEncoding::Linear;  // pbrt-v4 reads normal maps without decoding
+    std::string name = Error::format(ps.file(), ps.location(ps.line()), "normal map " + in_quotes(*file));
+    pm.normal_map = add_image_texture(name, image, false);
+  }
 }
 
 int PbrtBuilder::make_material(const std::string& type, const PbrtParams& ps) {
   MaterialDesc d;
   d.id = int(scene_.materials.size()) + 1;
   PbrtMaterialDesc pm;
-  if (ps.has("displacement")) {
-    ps.find_texture("displacement");
-    diag_.warn(ps, "displacement is not rendered");
-    diag_.unsupported("displacement (pbrt material \"displacement\")");
-  }
-  if (ps.has("normalmap")) {
-    ps.find_string("normalmap");
-    diag_.warn(ps, "normal maps are not rendered");
-    diag_.unsupported("normal maps");
-  }
+  read_bump(ps, pm);
   if (type == "diffuse") {
     pm.kind = PbrtMaterialKind::Diffuse;
     pm.reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(kPbrtDefaultReflectance));
@@ -81,16 +62,17 @@ int PbrtBuilder::make_material(const std::string& type, const PbrtParams& ps) {
     pm.g = float_param(ps, "g", 0.0f);
     pm.max_depth = ps.get_int("maxdepth", kPbrtDefaultCoatMaxDepth);
     pm.n_samples = ps.get_int("nsamples", 1);
-    if (pm.thickness < 0.0f) ps.fail(ps.line(), "\"thickness\" must not be negative");
-    if (pm.g <= -1.0f || pm.g >= 1.0f) ps.fail(ps.line(), "\"g\" must lie in (-1, 1)");
+    if (pm.thickness.value < 0.0f) ps.fail(ps.line(), "\"thickness\" must not be negative");
+    if (pm.g.value <= -1.0f || pm.g.value >= 1.0f) ps.fail(ps.line(), "\"g\" must lie in (-1, 1)");
     if (pm.max_depth < 1 || pm.n_samples < 1) ps.fail(ps.line(), "\"maxdepth\" and \"nsamples\" must be at least 1");
   } else if (type == "conductor") {
     pm.kind = PbrtMaterialKind::Conductor;
     if (ps.has("reflectance")) {
+      pm.conductor_by_reflectance = true;
       pm.conductor_reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(1.0f));
     } else {
-      pm.conductor_eta = spectrum_param(ps, "eta", SpectrumUse::Unbounded, pm.conductor_eta);
-      pm.conductor_k = spectrum_param(ps, "k", SpectrumUse::Unbounded, pm.conductor_k);
+      pm.conductor_eta = spectrum_param(ps, "eta", SpectrumUse::Unbounded, pm.conductor_eta.value);
+      pm.conductor_k = spectrum_param(ps, "k", SpectrumUse::Unbounded, pm.conductor_k.value);
     }
     read_roughness(ps, pm);
   } else if (type == "dielectric") {
@@ -104,7 +86,8 @@ int PbrtBuilder::make_material(const std::string& type, const PbrtParams& ps) {
     diag_.unsupported("pbrt material " + in_quotes(type));
     for (const PbrtParam& p : ps.params()) p.used = true;
     pm.kind = PbrtMaterialKind::Diffuse;
-    pm.reflectance = Rgb(kPbrtDefaultReflectance);
+    pm = PbrtMaterialDesc{};
+    pm.reflectance = {Rgb(kPbrtDefaultReflectance), -1};
   }
   d.pbrt = pm;
   diag_.report_unused(ps);

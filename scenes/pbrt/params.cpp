@@ -259,6 +259,14 @@ std::optional<Vec3f> PbrtParams::find_point3(std::string_view name) const {
   return Vec3f(p->floats[0], p->floats[1], p->floats[2]);
 }
 
+std::optional<Vec3f> PbrtParams::find_vector3(std::string_view name) const {
+  const PbrtParam* p = find(name, {PbrtType::Vector3}, "vector3");
+  if (!p) return std::nullopt;
+  if (p->floats.size() != 3)
+    fail(p->line, "parameter " + in_quotes(name) + " takes one vector (3 values), got " + std::to_string(p->count()));
+  return Vec3f(p->floats[0], p->floats[1], p->floats[2]);
+}
+
 std::vector<float> PbrtParams::get_floats(std::string_view name) const {
   const PbrtParam* p = find(name, {PbrtType::Float}, "float");
   return p ? p->floats : std::vector<float>{};

@@ -80,6 +80,7 @@ class PbrtParams {
     return find_string(name).value_or(def);
   }
   std::optional<Vec3f> find_point3(std::string_view name) const;
+  std::optional<Vec3f> find_vector3(std::string_view name) const;
   // Arrays (empty when absent).
   std::vector<float> get_floats(std::string_view name) const;
   std::vector<int64_t> get_ints(std::string_view name) const;

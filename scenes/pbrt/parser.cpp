@@ -354,7 +354,7 @@ class PbrtParser {
       const std::string cls = read_string(cur, line, d);
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name), gs_.defaults.texture);
       require_world(line, d);
-      return builder_.make_texture(name, type, cls, ps);
+      return builder_.make_texture(name, type, cls, ps, gs_.ctm[0]);
     }
     if (d == "LightSource") {
       const std::string type = read_string(cur, line, d);
@@ -714,7 +714,9 @@ class PbrtParser {
   // ---- state ----
 
   SceneDesc scene_;
-  PbrtBuilder builder_{scene_};
+  PbrtBuilder builder_{scene_, [this](const std::string& name, const PbrtParams& ps) {
+                         return resolve(name, ps.line(), ps.context());
+                       }};
   PbrtDiagnostics& diag_ = builder_.diagnostics();
   std::string root_path_, root_dir_, include_trace_;
   std::vector<OpenFile> files_;

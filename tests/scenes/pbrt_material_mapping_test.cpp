@@ -79,6 +79,7 @@ TEST(PbrtMaterialMapping, ConductorRoughnessIsRemapped) {
 
 TEST(PbrtMaterialMapping, ConductorReflectanceFormHasThatNormalReflectance) {
   PbrtMaterialDesc d = of_kind(PbrtMaterialKind::Conductor);
+  d.conductor_by_reflectance = true;
   d.conductor_reflectance = Rgb(0.9f, 0.5f, 0.1f);
   d.uroughness = d.vroughness = 0.1f;
   const Material m = build_material(pbrt_material(d), pbrt_scene());
@@ -86,7 +87,7 @@ TEST(PbrtMaterialMapping, ConductorReflectanceFormHasThatNormalReflectance) {
   const RgbComplexIor& ior = std::get<RoughConductor>(m.surface).ior;
   EXPECT_EQ(ior.eta, Rgb(1.0f));
   const Rgb r0 = fresnel_conductor(1.0f, ior);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(r0[c], (*d.conductor_reflectance)[c], 1e-5f);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(r0[c], d.conductor_reflectance.value[c], 1e-5f);
   // r = 1 would need k = infinity: pbrt clamps to 0.9999.
   d.conductor_reflectance = Rgb(1.0f);
   const Material one = build_material(pbrt_material(d), pbrt_scene());
@@ -177,7 +178,8 @@ TEST(PbrtMaterialMapping, BadValuesNameFileMaterialAndType) {
   add(K::Conductor, [](auto& d) { d.vroughness = INFINITY; }, "vroughness");
   add(K::Conductor, [](auto& d) { d.conductor_k = Rgb(1, -1, 1); }, "k must be finite and non-negative");
   add(K::Conductor, [](auto& d) { d.conductor_eta = Rgb(NAN); }, "eta must be finite");
-  add(K::Conductor, [](auto& d) { d.conductor_reflectance = Rgb(-0.5f); }, "reflectance must be");
+  add(K::Conductor, [](auto& d) { d.conductor_by_reflectance = true, d.conductor_reflectance = Rgb(-0.5f); },
+      "reflectance must be");
   add(K::Dielectric, [](auto& d) { d.eta = 0.0f; }, "pbrt dielectric material: eta must be a positive number");
   add(K::Dielectric, [](auto& d) { d.eta = -1.5f; }, "eta must be a positive number");
   add(K::CoatedDiffuse, [](auto& d) { d.thickness = -0.01f; }, "pbrt coateddiffuse material: thickness");
