@@ -33,10 +33,13 @@ struct TextureFileInfo {
 // How an 8- or 16-bit file's values become the linear values the texture system filters: as they are (divided by
 // the format's maximum), through the sRGB curve, or v^gamma. Decoding happens before filtering and before the MIP
 // levels are built (pbrt-v4 decodes when it loads an image). Float files are always read as they are.
+// unassociated_alpha: a file with alpha keeps its colour channels as stored (OpenImageIO otherwise multiplies
+// them by alpha, as it does for PNG, TGA and TIFF files with unassociated alpha).
 enum class TextureDecodeKind { Linear, Srgb, Gamma };
 struct TextureDecode {
   TextureDecodeKind kind = TextureDecodeKind::Linear;
   float gamma = 2.2f;
+  bool unassociated_alpha = false;
 };
 // Closest / Bilinear: the finest level only, derivatives unread. ClosestOneLevel / BilinearOneLevel: the same within
 // the one MIP level the footprint selects. Trilinear: bilinear in the two MIP levels around the footprint's larger

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "renderer/integrators/shading.h"
 #include "renderer/world/interaction.h"
 
 namespace kiln {
@@ -82,8 +83,11 @@ std::vector<AovLayer> render_aovs(const World& world, const Camera& camera, uint
             Hit hit;
             if (!world.accel->intersect(ray, hit)) continue;
             SurfaceInteraction si = make_interaction(world, ray, hit);
+            Material textured;  // the hit's material and shading normal with its textures applied
+            Rgb unlit;
+            const bool replaced = apply_hit_textures(world, si, textured, unlit);
             if (dot(si.ns, ray.d) > 0.0f) si.ns = -si.ns;  // face the camera, as denoisers expect
-            a += si.material ? material_albedo(*si.material) : Rgb(1.0f);
+            a += replaced ? unlit : si.material ? material_albedo(*si.material) : Rgb(1.0f);
             nn += si.ns;
             pp += si.p;
             z += hit.t * length(ray.d);

@@ -1,6 +1,7 @@
-// Arbitrary output variables for denoisers and compositing: first-hit albedo, shading normal, depth, position,
-// and the per-pixel variance of the beauty estimate. Written as extra EXR layers with the channel names other
-// tools expect (Albedo.R/G/B, N.X/Y/Z, Z, P.X/Y/Z, Variance.R/G/B).
+// Arbitrary output variables for denoisers and compositing: first-hit albedo, shading normal (both with the hit's
+// textures, bump and normal maps applied), depth, position, and the per-pixel variance of the beauty estimate.
+// Written as extra EXR layers with the channel names other tools expect (Albedo.R/G/B, N.X/Y/Z, Z, P.X/Y/Z,
+// Variance.R/G/B).
 #pragma once
 #include <string>
 #include <vector>

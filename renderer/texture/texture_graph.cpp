@@ -104,11 +104,12 @@ TextureWrapMode wrap_of(ImageWrap w) {
   return TextureWrapMode::Periodic;
 }
 
+// pbrt-v4 reads colour channels as stored, whatever the alpha.
 TextureDecode decode_of(const ImageTextureDesc& d) {
   switch (d.encoding) {
-    case ImageEncoding::Linear: return {TextureDecodeKind::Linear, 1.0f};
-    case ImageEncoding::Srgb: return {TextureDecodeKind::Srgb, 1.0f};
-    case ImageEncoding::Gamma: return {TextureDecodeKind::Gamma, d.gamma};
+    case ImageEncoding::Linear: return {TextureDecodeKind::Linear, 1.0f, true};
+    case ImageEncoding::Srgb: return {TextureDecodeKind::Srgb, 1.0f, true};
+    case ImageEncoding::Gamma: return {TextureDecodeKind::Gamma, d.gamma, true};
   }
   return {};
 }

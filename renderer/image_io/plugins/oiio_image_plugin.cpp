@@ -111,11 +111,15 @@ std::string first_line(const std::string& e) {
 
 // The texture system filters, and builds MIP levels from, what a file's ImageInput hands it. To filter linear values
 // of an sRGB- or gamma-encoded 8- or 16-bit file, the cache knows it by a name that carries the decoding, and reads
-// it through DecodedInput: the file's own reader, its values turned to linear floats scanline by scanline.
+// it through DecodedInput: the file's own reader (asked to leave alpha unassociated), its values turned to linear
+// floats scanline by scanline.
 constexpr char kDecodeSeparator = '\x1f';  // cannot occur in a path a scene names
 
 std::string decoded_name(const std::string& path, const TextureDecode& d) {
-  return path + kDecodeSeparator + (d.kind == TextureDecodeKind::Srgb ? std::string("srgb") : std::to_string(d.gamma));
+  std::string how = "linear";
+  if (d.kind == TextureDecodeKind::Srgb) how = "srgb";
+  if (d.kind == TextureDecodeKind::Gamma) how = std::to_string(d.gamma);
+  return path + kDecodeSeparator + how;
 }
 
 float srgb_to_linear(float v) {
@@ -130,8 +134,10 @@ class DecodedInput final : public OIIO::ImageInput {
     if (sep == std::string::npos) return false;
     const std::string how = name.substr(sep + 1);
     srgb_ = how == "srgb";
-    gamma_ = srgb_ ? 1.0f : std::strtof(how.c_str(), nullptr);
-    in_ = OIIO::ImageInput::open(name.substr(0, sep));
+    gamma_ = srgb_ || how == "linear" ? 1.0f : std::strtof(how.c_str(), nullptr);
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    in_ = OIIO::ImageInput::open(name.substr(0, sep), &config);
     if (!in_) {
       errorfmt("{}", OIIO::geterror());
       return false;
@@ -155,7 +161,10 @@ class DecodedInput final : public OIIO::ImageInput {
       return false;
     }
     const size_t n = size_t(m_spec.width) * size_t(m_spec.nchannels);
-    for (size_t i = 0; i < n; ++i) out[i] = srgb_ ? srgb_to_linear(out[i]) : std::pow(out[i], gamma_);
+    if (srgb_)
+      for (size_t i = 0; i < n; ++i) out[i] = srgb_to_linear(out[i]);
+    else if (gamma_ != 1.0f)
+      for (size_t i = 0; i < n; ++i) out[i] = std::pow(out[i], gamma_);
     return true;
   }
 
@@ -195,7 +204,9 @@ void* texture_open(void* s, const std::string& path, const TextureDecode& decode
   OIIO::ImageSpec spec;
   OIIO::TextureSystem::TextureHandle* h = texture_handle(sys, path, spec, error);
   if (!h) return nullptr;
-  if (decode.kind != TextureDecodeKind::Linear && integer_format(spec.format)) {
+  const bool decoded = decode.kind != TextureDecodeKind::Linear && integer_format(spec.format);
+  const bool raw_alpha = decode.unassociated_alpha && spec.alpha_channel >= 0;
+  if (decoded || raw_alpha) {
     const std::string name = decoded_name(path, decode);
     ts->imagecache()->add_file(OIIO::ustring(name), &create_decoded_input);
     h = texture_handle(sys, name, spec, error);

@@ -141,6 +141,20 @@ TEST_F(CliBadInput, PbrtWrongParameterType) {
                    "line 2 (Camera \"perspective\"): parameter \"fov\" is declared \"string\"");
 }
 
+TEST_F(CliBadInput, PbrtMissingTextureFile) {
+  expect_bad_input(bad_pbrt("missing_texture_file.pbrt"),
+                   "line 3 (Texture \"grid\"): cannot find \"textures/not_there.png\"");
+}
+
+TEST_F(CliBadInput, PbrtUnknownTextureClass) {
+  expect_bad_input(bad_pbrt("unknown_texture_class.pbrt"), "line 3 (Texture \"cloth\"): unknown texture class \"plaid\"");
+}
+
+// A file that exists but is no image fails when the world opens it, still naming the Texture directive's line.
+TEST_F(CliBadInput, PbrtUnreadableTexture) {
+  expect_bad_input(bad_pbrt("unreadable_texture.pbrt"), "line 3 (Texture \"grid\"): imagemap: image");
+}
+
 // A scene whose sphere wears texture `ref` of a Textures block with one image texture `image`.
 std::string textured_scene_text(const std::string& image, const std::string& ref = "1") {
   std::string text = scene_text();
