@@ -33,7 +33,7 @@ constexpr float kWholeImageFootprint = 1e6f;
 // With C the second antiderivative of c, the average is (C(x + r) - 2 C(x) + C(x - r)) / r^2; C(x) = x / 2 +
 // y (1 - 2 |y|) with y = x / 2 - floor(x / 2) - 1/2 (x^2 / 2 on [0, 1], continuing with period 2 plus slope 1/2).
 float filtered_checker(float x, float r) {
-  if (std::floor(x - r) == std::floor(x + r)) return (int64_t(std::floor(x)) & 1) ? -1.0f : 1.0f;
+  if (std::floor(x - r) == std::floor(x + r)) return std::fmod(std::floor(x), 2.0f) != 0.0f ? -1.0f : 1.0f;
   const auto antiderivative2 = [](float v) {
     const float y = v / 2.0f - std::floor(v / 2.0f) - 0.5f;
     return v / 2.0f + y * (1.0f - 2.0f * std::fabs(y));
