@@ -83,6 +83,7 @@ class PbrtBuilder {
   void read_mapping(const PbrtParams& ps, const Transform& to_world, TextureMappingDesc& m);
   void read_image_texture(const PbrtParams& ps, ImageTextureDesc& image);
   int add_image_texture(const std::string& name, const ImageTextureDesc& image, bool is_float);
+  void add_external_file(const std::string& path);  // once, however many textures read it
   void read_operands(const PbrtParams& ps, PbrtTextureDesc& t);
   void read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm);
   TexturedFloat interface_eta(const PbrtParams& ps);

@@ -164,7 +164,12 @@ void PbrtBuilder::read_image_texture(const PbrtParams& ps, ImageTextureDesc& ima
   image.invert = ps.get_bool("invert", false);
   ps.get_float("maxanisotropy", 8.0f);  // OpenImageIO bounds the anisotropy itself
   if (!std::isfinite(image.scale)) ps.fail(ps.line(), "\"scale\" must be finite");
-  scene_.external_files.push_back(image.path);
+  add_external_file(image.path);
+}
+
+void PbrtBuilder::add_external_file(const std::string& path) {
+  std::vector<std::string>& files = scene_.external_files;
+  if (std::find(files.begin(), files.end(), path) == files.end()) files.push_back(path);
 }
 
 int PbrtBuilder::add_image_texture(const std::string& name, const ImageTextureDesc& image, bool is_float) {
@@ -174,7 +179,7 @@ int PbrtBuilder::add_image_texture(const std::string& name, const ImageTextureDe
   t.is_float = is_float;
   t.image = image;
   scene_.pbrt_textures.push_back(std::move(t));
-  scene_.external_files.push_back(image.path);
+  add_external_file(image.path);
   return int(scene_.pbrt_textures.size()) - 1;
 }
 
