@@ -194,8 +194,12 @@ RgbComplexIor conductor_ior(const PbrtMaterialDesc& d) {
   return {non_negative(d.conductor_eta.value), non_negative(d.conductor_k.value)};
 }
 
-// The largest |g| a texture may give (the Henyey-Greenstein phase function is a delta at |g| = 1).
+// A texture's |g| >= 1 is brought to this (the Henyey-Greenstein phase function is a delta at |g| = 1).
 constexpr float kMaxTexturedG = 0.999f;
+float asymmetry(float g) {
+  if (!std::isfinite(g)) return 0.0f;
+  return std::abs(g) < 1.0f ? g : std::copysign(kMaxTexturedG, g);
+}
 
 }  // namespace
 
@@ -229,7 +233,7 @@ Material build_pbrt_material(const PbrtMaterialDesc& d) {
                                   RoughDielectric{ior(d.eta.value), distribution(d)},
                                   non_negative(d.thickness.value),
                                   clamped(d.albedo.value, 1.0f),
-                                  std::clamp(finite_or(d.g.value, 0.0f), -kMaxTexturedG, kMaxTexturedG),
+                                  asymmetry(d.g.value),
                                   d.max_depth,
                                   d.n_samples};
       break;
