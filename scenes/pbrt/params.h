@@ -110,6 +110,7 @@ class PbrtParams {
   const PbrtParam* find_one(std::string_view name, std::initializer_list<PbrtType> accepted,
                             const char* expected) const;
   std::vector<float> numbers(std::string_view name, PbrtType type, size_t arity) const;
+  std::optional<Vec3f> find_triple(std::string_view name, PbrtType type, const char* one) const;
 
   std::string file_, context_, dir_ = ".";
   int line_ = 0;
