@@ -9,7 +9,7 @@
 //   directionmix   |n . dir| tex1 + (1 - |n . dir|) tex2      operands 0, 1; `direction`
 //   checkerboard   tex1 on even cells, tex2 on odd (2-D on the mapping, 3-D on the texture-space point)
 //                                               operands 0, 1; `dimension`
-//   dots           inside inside a dot, outside elsewhere     operands 0 (inside), 1 (outside)
+//   dots           one value in a dot, another elsewhere     operands 0 (dot), 1 (background)
 //   bilerp         bilinear in (s, t) between v00, v01, v10, v11   operands 0..3
 //   imagemap       an image file (`image`)
 //   fbm, wrinkled  fractional Brownian motion / turbulence of Perlin noise (float)   `octaves`, `roughness`
@@ -82,7 +82,7 @@ struct ImageTextureDesc {
 // Operand slots (TextureDesc::operands).
 inline constexpr int kTexOperandTex1 = 0, kTexOperandTex2 = 1, kTexOperandAmount = 2;  // mix, directionmix, checkerboard
 inline constexpr int kTexOperandTex = 0, kTexOperandScale = 1;                          // scale
-inline constexpr int kTexOperandInside = 0, kTexOperandOutside = 1;                     // dots
+inline constexpr int kTexOperandDot = 0, kTexOperandBackground = 1;                     // dots
 inline constexpr int kTexOperandV00 = 0, kTexOperandV01 = 1, kTexOperandV10 = 2, kTexOperandV11 = 3;  // bilerp
 
 struct PbrtTextureDesc {

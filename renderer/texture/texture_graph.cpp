@@ -266,8 +266,8 @@ T TextureGraph::eval(int i, const TextureEvalContext& c) const {
       return blend<T>(w, arg(kTexOperandTex1), arg(kTexOperandTex2));
     }
     case TextureClass::Dots:
-      return inside_dot(map_2d(d.mapping, c).st) ? operand<T>(in[kTexOperandInside], c)
-                                                  : operand<T>(in[kTexOperandOutside], c);
+      return inside_dot(map_2d(d.mapping, c).st) ? operand<T>(in[kTexOperandDot], c)
+                                                  : operand<T>(in[kTexOperandBackground], c);
     case TextureClass::Bilerp: {
       const Vec2f st = map_2d(d.mapping, c).st;
       return operand<T>(in[kTexOperandV00], c) * ((1 - st.x) * (1 - st.y)) +

@@ -14,7 +14,7 @@
 //     the weight of tex2 is the checker averaged over a triangle filter 1.5 footprints wide, so it blurs across
 //     edges no finer than a pixel.
 //   * dots: one dot of radius 0.35 in each cell around an integer (s, t) where the noise there is positive, shifted
-//     by noise; `inside` in it, `outside` elsewhere (as documented: pbrt-v4 at 5f7a606 passes them swapped).
+//     by noise; the dot's value in it, the background's elsewhere (the loader says which parameter is which).
 //   * bilerp: (1-s)(1-t) v00 + s(1-t) v10 + (1-s)t v01 + st v11.
 //   * fbm, wrinkled (turbulence), windy, marble: renderer/texture/fractal_noise.h on the texture-space point.
 #pragma once

@@ -221,8 +221,10 @@ void PbrtBuilder::read_operands(const PbrtParams& ps, PbrtTextureDesc& t) {
       in[kTexOperandTex2] = value("tex2", 0.0f);
       break;
     case TextureClass::Dots:
-      in[kTexOperandInside] = value("inside", 1.0f);
-      in[kTexOperandOutside] = value("outside", 0.0f);
+      // As every pbrt renders it (its constructor takes the two in the other order), and the reverse of the
+      // documentation: "outside" fills the dots and "inside" the rest.
+      in[kTexOperandDot] = value("outside", 0.0f);
+      in[kTexOperandBackground] = value("inside", 1.0f);
       break;
     case TextureClass::Bilerp:
       in[kTexOperandV00] = constant("v00", 0.0f);

@@ -108,9 +108,10 @@ TEST(PbrtTextures, ClassesReadTheirOperandsWithPbrtDefaults) {
   EXPECT_EQ(last_texture(s).operands[kTexOperandTex1].value, Rgb(1.0f));
   EXPECT_EQ(last_texture(s).operands[kTexOperandTex2].value, Rgb(0.0f));
 
+  // dots as pbrt renders them: "outside" in the dots, "inside" around them.
   s = parse("Texture \"d\" \"spectrum\" \"dots\" \"rgb inside\" [1 0 0]\n");
-  EXPECT_EQ(last_texture(s).operands[kTexOperandInside].value, Rgb(1, 0, 0));
-  EXPECT_EQ(last_texture(s).operands[kTexOperandOutside].value, Rgb(0.0f));
+  EXPECT_EQ(last_texture(s).operands[kTexOperandBackground].value, Rgb(1, 0, 0));
+  EXPECT_EQ(last_texture(s).operands[kTexOperandDot].value, Rgb(0.0f));
 
   s = parse("Texture \"b\" \"float\" \"bilerp\" \"float v11\" 4\n");
   EXPECT_EQ(last_texture(s).operands[kTexOperandV00].value, Rgb(0.0f));
