@@ -9,25 +9,12 @@
 #include "core/frame.h"
 #include "renderer/texture/bump_map.h"
 #include "renderer/texture/checkerboard.h"
-#include "renderer/world/interaction.h"
 #include "renderer/texture/perlin.h"
 #include "scenes/material_mapping.h"
 
 namespace kiln {
 namespace {
 
-// Reflectances of a copied prototype: k_d / k_s of the course BRDFs, a Lambertian's albedo per unit k_d.
-void set_reflectances(Material& m, Rgb kd, Rgb ks, float lambert_scale) {
-  if (auto* l = std::get_if<Lambert>(&m.surface)) {
-    l->reflectance = kd * lambert_scale;
-  } else if (auto* p = std::get_if<Phong>(&m.surface)) {
-    p->kd = kd, p->ks = ks;
-  } else if (auto* b = std::get_if<BlinnPhong>(&m.surface)) {
-    b->kd = kd, b->ks = ks;
-  } else if (auto* t = std::get_if<TorranceSparrow>(&m.surface)) {
-    t->kd = kd, t->ks = ks;
-  }
-}
 
 Rgb degamma(Rgb c) { return pow(c, kDegammaExponent); }
 
@@ -101,10 +88,6 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
 }
 
 SceneTextures::~SceneTextures() = default;
-
-float footprint_scale_for_spp(uint32_t samples_per_pixel) {
-  return std::max(kMinPbrtFootprintScale, 1.0f / std::sqrt(float(std::max(samples_per_pixel, 1u))));
-}
 
 bool material_needs_textures(const SceneDesc& scene, int material) {
   if (material < 0 || size_t(material) >= scene.materials.size()) return false;
@@ -241,64 +224,6 @@ Vec3f SceneTextures::mapped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, 
   Vec3f tu, tv;
   tangent_frame(n, dpdu, cross(n, dpdu), tu, tv);
   return unit_on_side(tu * (2.0f * c.r - 1.0f) + tv * (2.0f * c.g - 1.0f) + n * (2.0f * c.b - 1.0f), n);
-}
-
-UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si) {
-  Vec3f dpdx, dpdy;
-  approximate_dp_dxy(camera, si.p, si.ng, dpdx, dpdy);
-  return uv_footprint(dpdx, dpdy, si.dpdu, si.dpdv);
-}
-
-namespace {
-
-// The hit as pbrt-v4 textures see it; the footprint only when a texture reads it.
-TextureEvalContext pbrt_eval_context(const SceneTextures& tex, const SurfaceInteraction& si, bool footprint) {
-  TextureEvalContext c;
-  c.p = si.p;
-  c.n = si.ng;
-  c.uv = si.uv;
-  if (footprint) {
-    approximate_dp_dxy(tex.camera(), si.p, si.ng, c.dpdx, c.dpdy);
-    c.dpdx = c.dpdx * tex.pbrt_footprint_scale();
-    c.dpdy = c.dpdy * tex.pbrt_footprint_scale();
-    c.fp = uv_footprint(c.dpdx, c.dpdy, si.dpdu, si.dpdv);
-  }
-  return c;
-}
-
-}  // namespace
-
-bool apply_textures(const World& w, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
-  const SceneTextures& tex = *w.textures;
-  const TextureBinding& b = tex.bindings()[size_t(si.textures)];
-  if (b.pbrt_material >= 0) {
-    const TexturedPbrtMaterial& m = tex.pbrt_materials()[size_t(b.pbrt_material)];
-    const bool smooth = w.shape_data[si.shape].normals >= 0;
-    resolve_textured_material(tex.graph(), m, pbrt_eval_context(tex, si, m.needs_footprint), smooth, si, scratch);
-    return false;
-  }
-  const Vec3f p = b.to_object.point(si.p);  // where procedural textures are evaluated
-  // Only bindings with a filtered colour texture pay for a footprint (bump and normal maps read the finest level).
-  const UvFootprint fp = b.footprint ? hit_footprint(tex.camera(), si) : UvFootprint{};
-  if (b.all >= 0) {
-    unlit = tex.value(b.all, si.uv, p, fp);
-    return true;
-  }
-  if (b.normal >= 0) si.ns = tex.mapped_normal(tex.textures()[size_t(b.normal)], si.ns, si.uv, p, si.dpdu);
-  if (b.bump >= 0) si.ns = tex.bumped_normal(tex.textures()[size_t(b.bump)], si.ns, si.uv, p, si.dpdu, si.dpdv);
-  if (b.material >= 0 && si.material) {
-    const TexturableMaterial& tm = tex.materials()[size_t(b.material)];
-    scratch = tm.prototype;
-    Rgb kd = tm.kd, ks = tm.ks;
-    if (b.kd >= 0) {
-      const Rgb texel = tex.value(b.kd, si.uv, p, fp);
-      kd = b.blend_kd ? (kd + texel) * 0.5f : texel;
-    }
-    if (b.ks >= 0) ks = tex.value(b.ks, si.uv, p, fp);
-    set_reflectances(scratch, kd, ks, tm.lambert_scale);
-    si.material = &scratch;
-  }
-  return false;
 }
 
 }  // namespace kiln

@@ -28,9 +28,6 @@
 
 namespace kiln {
 
-struct SurfaceInteraction;
-struct World;
-
 struct CompiledTexture {
   TextureSource source = TextureSource::Image;
   DecalMode decal = DecalMode::ReplaceKd;
@@ -82,11 +79,6 @@ struct TextureBuildStats {
   size_t textured_materials = 0;  // pbrt-v4 materials resolved per hit
 };
 
-// pbrt-v4 scales a hit's footprint by max(1/8, 1/sqrt(spp)): with many samples per pixel the pixel filter already
-// averages the texture, so it is filtered over less than a pixel. Applied to pbrt-v4 textures only (the course
-// textures' filtering is the course's).
-float footprint_scale_for_spp(uint32_t samples_per_pixel);
-inline constexpr float kMinPbrtFootprintScale = 0.125f;
 
 class SceneTextures {
  public:
@@ -123,15 +115,6 @@ class SceneTextures {
   // for every texture. A procedural one is evaluated at the point (u, v, 0) of the image plane.
   Rgb background_value(Vec2f film) const { return value(background_, film, Vec3f(film.x, film.y, 0.0f)); }
   TextureBuildStats stats() const;
-  // The camera whose pixels footprints are measured in: set before rendering with it (render_samples does), with
-  // the render's samples per pixel (pbrt-v4 narrows its textures' footprints as the samples grow: see
-  // footprint_scale_for_spp).
-  void set_camera(const CameraSpread& camera, uint32_t samples_per_pixel = 1) {
-    camera_ = camera;
-    pbrt_footprint_scale_ = footprint_scale_for_spp(samples_per_pixel);
-  }
-  const CameraSpread& camera() const { return camera_; }
-  float pbrt_footprint_scale() const { return pbrt_footprint_scale_; }
   TextureCacheStats cache_stats() const { return images_.cache_stats(); }
 
  private:
@@ -150,20 +133,10 @@ class SceneTextures {
   TextureImages images_;
   TextureGraph graph_;
   TextureBuildStats stats_;
-  CameraSpread camera_;
-  float pbrt_footprint_scale_ = 1.0f;
 };
 
 // Whether a shape with this material (an index into SceneDesc::materials) needs the scene's textures although it has
 // no course textures: a pbrt-v4 material evaluated per hit.
 bool material_needs_textures(const SceneDesc& scene, int material);
-
-// The footprint of a hit in its texture coordinates, from the camera's pixel spread (renderer/texture/footprint.h).
-UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si);
-
-// Shading at a textured hit (si.textures >= 0) of world w: sets si.material to `scratch` (the material with the
-// texel's k_d / k_s, or a pbrt-v4 material built from its textures' values) and bends si.ns by bump or normal maps.
-// Returns true when a replace_all texture gives the surface's colour outright (`unlit`), without shading.
-bool apply_textures(const World& w, SurfaceInteraction& si, Material& scratch, Rgb& unlit);
 
 }  // namespace kiln

@@ -53,11 +53,12 @@ Rendered render(const std::string& path, uint32_t spp = 16) {
   const CameraDesc& cd = r.scene.cameras.at(0);
   const Camera cam(cd);
   Film film(cam.width(), cam.height());
+  film.keep_surfaces();  // for the normal AOV
   RenderOptions ro;
   ro.spp_total = spp;
   render_samples(*r.world, cam, scene_settings(cd, r.scene, r.world->features), ro, 0, spp, film);
   r.image = film.mean();
-  for (const AovLayer& l : render_aovs(*r.world, cam, kAovNormal, film, ro, 16))
+  for (const AovLayer& l : aov_layers(film, kAovNormal))
     for (size_t i = 0; i < l.data.size(); i += 3) r.normals.push_back({l.data[i], l.data[i + 1], l.data[i + 2]});
   return r;
 }
