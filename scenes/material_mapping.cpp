@@ -97,6 +97,12 @@ const char* pbrt_kind_name(PbrtMaterialKind k) {
       return "dielectric";
     case PbrtMaterialKind::CoatedDiffuse:
       return "coateddiffuse";
+    case PbrtMaterialKind::CoatedConductor:
+      return "coatedconductor";
+    case PbrtMaterialKind::DiffuseTransmission:
+      return "diffusetransmission";
+    case PbrtMaterialKind::ThinDielectric:
+      return "thindielectric";
     case PbrtMaterialKind::Interface:
       return "interface";
   }
@@ -125,36 +131,37 @@ class PbrtCheck {
       fail(std::string(name) + " must be a positive number, got " + std::to_string(v.value));
   }
   void check() const {
-    non_negative(d_.uroughness, "uroughness");
-    non_negative(d_.vroughness, "vroughness");
+    const bool coated = d_.kind == PbrtMaterialKind::CoatedConductor;
+    non_negative(d_.uroughness, coated ? "interface.uroughness" : "uroughness");
+    non_negative(d_.vroughness, coated ? "interface.vroughness" : "vroughness");
     switch (d_.kind) {
       case PbrtMaterialKind::Diffuse:
         colour(d_.reflectance, "reflectance");
         break;
       case PbrtMaterialKind::Conductor:
-        if (d_.conductor_by_reflectance) {
-          colour(d_.conductor_reflectance, "reflectance");
-        } else {
-          colour(d_.conductor_eta, "eta");
-          colour(d_.conductor_k, "k");
-        }
+        conductor();
         break;
       case PbrtMaterialKind::Dielectric:
+      case PbrtMaterialKind::ThinDielectric:
         positive(d_.eta, "eta");
         break;
       case PbrtMaterialKind::CoatedDiffuse:
-        if (!d_.g.textured() && (!std::isfinite(d_.g.value) || !(std::abs(d_.g.value) < 1.0f)))
-          fail("g must lie strictly between -1 and 1, got " + std::to_string(d_.g.value));
-        if (d_.max_depth < 0 || d_.max_depth > kMaxPbrtLayeredDepth)
-          fail("maxdepth must be in [0, " + std::to_string(kMaxPbrtLayeredDepth) + "], got " +
-               std::to_string(d_.max_depth));
-        if (d_.n_samples < 1 || d_.n_samples > kMaxPbrtLayeredSamples)
-          fail("nsamples must be in [1, " + std::to_string(kMaxPbrtLayeredSamples) + "], got " +
-               std::to_string(d_.n_samples));
+        layers();
         colour(d_.reflectance, "reflectance");
-        colour(d_.albedo, "albedo");
         positive(d_.eta, "eta");
-        non_negative(d_.thickness, "thickness");
+        break;
+      case PbrtMaterialKind::CoatedConductor:
+        layers();
+        positive(d_.eta, "interface.eta");
+        non_negative(d_.conductor_uroughness, "conductor.uroughness");
+        non_negative(d_.conductor_vroughness, "conductor.vroughness");
+        conductor();
+        break;
+      case PbrtMaterialKind::DiffuseTransmission:
+        if (!std::isfinite(d_.scale) || d_.scale < 0.0f)
+          fail("scale must be a non-negative number, got " + std::to_string(d_.scale));
+        colour(d_.reflectance, "reflectance");
+        colour(d_.transmittance, "transmittance");
         break;
       case PbrtMaterialKind::Interface:
         break;
@@ -162,6 +169,26 @@ class PbrtCheck {
   }
 
  private:
+  void conductor() const {
+    if (d_.conductor_by_reflectance) {
+      colour(d_.conductor_reflectance, "reflectance");
+    } else {
+      colour(d_.conductor_eta, "eta");
+      colour(d_.conductor_k, "k");
+    }
+  }
+  // The coated materials' random walk and medium: its limits, g in (-1, 1), thickness and albedo.
+  void layers() const {
+    if (!d_.g.textured() && (!std::isfinite(d_.g.value) || !(std::abs(d_.g.value) < 1.0f)))
+      fail("g must lie strictly between -1 and 1, got " + std::to_string(d_.g.value));
+    if (d_.max_depth < 0 || d_.max_depth > kMaxPbrtLayeredDepth)
+      fail("maxdepth must be in [0, " + std::to_string(kMaxPbrtLayeredDepth) + "], got " + std::to_string(d_.max_depth));
+    if (d_.n_samples < 1 || d_.n_samples > kMaxPbrtLayeredSamples)
+      fail("nsamples must be in [1, " + std::to_string(kMaxPbrtLayeredSamples) + "], got " + std::to_string(d_.n_samples));
+    colour(d_.albedo, "albedo");
+    non_negative(d_.thickness, "thickness");
+  }
+
   const Context& ctx_;
   const PbrtMaterialDesc& d_;
 };
@@ -177,11 +204,12 @@ Rgb non_negative(Rgb c) { return clamped(c, std::numeric_limits<float>::max()); 
 // An index of refraction that is not positive means no interface (pbrt-v4 reads eta 0 as 1).
 float ior(float eta) { return eta > 0.0f && std::isfinite(eta) ? eta : 1.0f; }
 
-TrowbridgeReitz distribution(const PbrtMaterialDesc& d) {
-  const float u = non_negative(d.uroughness.value), v = non_negative(d.vroughness.value);
+TrowbridgeReitz distribution(const PbrtMaterialDesc& d, const TexturedFloat& ur, const TexturedFloat& vr) {
+  const float u = non_negative(ur.value), v = non_negative(vr.value);
   if (!d.remap_roughness) return TrowbridgeReitz(u, v);
   return TrowbridgeReitz(TrowbridgeReitz::roughness_to_alpha(u), TrowbridgeReitz::roughness_to_alpha(v));
 }
+TrowbridgeReitz distribution(const PbrtMaterialDesc& d) { return distribution(d, d.uroughness, d.vroughness); }
 
 RgbComplexIor conductor_ior(const PbrtMaterialDesc& d) {
   if (d.conductor_by_reflectance) {
@@ -199,6 +227,12 @@ constexpr float kMaxTexturedG = 0.999f;
 float asymmetry(float g) {
   if (!std::isfinite(g)) return 0.0f;
   return std::abs(g) < 1.0f ? g : std::copysign(kMaxTexturedG, g);
+}
+
+// The coat of index eta (the material's roughness) and the medium under it.
+LayerStack layers(const PbrtMaterialDesc& d, float eta) {
+  return LayerStack{RoughDielectric{eta, distribution(d)}, non_negative(d.thickness.value),
+                    clamped(d.albedo.value, 1.0f), asymmetry(d.g.value), d.max_depth, d.n_samples};
 }
 
 }  // namespace
@@ -229,13 +263,25 @@ Material build_pbrt_material(const PbrtMaterialDesc& d) {
       break;
     }
     case PbrtMaterialKind::CoatedDiffuse:
-      out.surface = CoatedDiffuse{clamped(d.reflectance.value, 1.0f),
-                                  RoughDielectric{ior(d.eta.value), distribution(d)},
-                                  non_negative(d.thickness.value),
-                                  clamped(d.albedo.value, 1.0f),
-                                  asymmetry(d.g.value),
-                                  d.max_depth,
-                                  d.n_samples};
+      out.surface = CoatedDiffuse{{layers(d, ior(d.eta.value)), Lambert{clamped(d.reflectance.value, 1.0f)}}};
+      break;
+    case PbrtMaterialKind::CoatedConductor: {
+      const float eta = ior(d.eta.value);
+      // The conductor lies under the coat: its index relative to the coat's (pbrt-v4 divides eta and k by it).
+      const RgbComplexIor c = conductor_ior(d);
+      const TrowbridgeReitz base = distribution(d, d.conductor_uroughness, d.conductor_vroughness);
+      out.surface = CoatedConductor{{layers(d, eta), RoughConductor{base, {c.eta / eta, c.k / eta}}}};
+      break;
+    }
+    case PbrtMaterialKind::DiffuseTransmission: {
+      const float scale = non_negative(d.scale);
+      // pbrt-v4 scales first, then clamps to [0, 1].
+      out.surface = DiffuseTransmission{clamped(d.reflectance.value * scale, 1.0f),
+                                        clamped(d.transmittance.value * scale, 1.0f)};
+      break;
+    }
+    case PbrtMaterialKind::ThinDielectric:
+      out.delta = ThinDielectric{ior(d.eta.value)};
       break;
     case PbrtMaterialKind::Interface:
       out.passes_through = true;
@@ -258,6 +304,7 @@ Rgb absorption_from_transparency(Rgb a) {
 
 Material build_material(const MaterialDesc& m, const SceneDesc& scene) {
   const Context ctx(m, scene);
+  if (m.mix) return Material{};  // never shaded: the world resolves a mix to one of its components at each hit
   if (m.pbrt) {
     PbrtCheck(ctx, *m.pbrt).check();
     return build_pbrt_material(*m.pbrt);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/color.h"
+#include "core/quadric.h"
 #include "core/transform.h"
 #include "scenes/texture_graph.h"
 
@@ -86,24 +87,45 @@ enum class MaterialType { Plain, Mirror, Dielectric, Conductor };
 // already reduced to linear RGB by the loader. A parameter pbrt lets a texture set is a TexturedFloat / TexturedRgb:
 // untextured, its value is the parameter; textured, the material is built again at every hit from the textures'
 // values there (renderer/texture/textured_material.h).
-enum class PbrtMaterialKind { Diffuse, Conductor, Dielectric, CoatedDiffuse, Interface };
+enum class PbrtMaterialKind {
+  Diffuse,
+  Conductor,
+  Dielectric,
+  CoatedDiffuse,
+  CoatedConductor,
+  DiffuseTransmission,
+  ThinDielectric,
+  Interface
+};
 struct PbrtMaterialDesc {
   PbrtMaterialKind kind = PbrtMaterialKind::Diffuse;
-  TexturedRgb reflectance{Rgb(0.5f)};        // diffuse, coateddiffuse
-  bool conductor_by_reflectance = false;     // conductor given by "reflectance" (conductor_reflectance) instead of eta / k
+  TexturedRgb reflectance{Rgb(0.5f)};        // diffuse, coateddiffuse, diffusetransmission
+  TexturedRgb transmittance{Rgb(0.25f)};     // diffusetransmission
+  float scale = 1.0f;                        // diffusetransmission: multiplies reflectance and transmittance
+  bool conductor_by_reflectance = false;     // (coated) conductor given by "reflectance" (conductor_reflectance)
   TexturedRgb conductor_reflectance{Rgb(1.0f)};
-  TexturedRgb conductor_eta{Rgb(0.2f, 0.92f, 1.1f)};  // conductor complex IOR (pbrt's default is copper)
+  TexturedRgb conductor_eta{Rgb(0.2f, 0.92f, 1.1f)};  // (coated) conductor complex IOR (pbrt's default is copper)
   TexturedRgb conductor_k{Rgb(3.91f, 2.45f, 2.14f)};
-  TexturedFloat eta{1.5f};                   // dielectric / coateddiffuse interface IOR
-  TexturedFloat uroughness{0.0f}, vroughness{0.0f};  // as written in the file ("roughness" sets both)
+  TexturedFloat eta{1.5f};  // dielectric / thindielectric IOR, coateddiffuse / coatedconductor interface IOR
+  TexturedFloat uroughness{0.0f}, vroughness{0.0f};  // as written in the file ("roughness" sets both);
+                                                     // coatedconductor: the interface's
+  TexturedFloat conductor_uroughness{0.0f}, conductor_vroughness{0.0f};  // coatedconductor: the conductor's
   bool remap_roughness = true;
-  TexturedFloat thickness{0.01f};            // coateddiffuse layer
-  TexturedRgb albedo{Rgb(0.0f)};             // coateddiffuse medium albedo
-  TexturedFloat g{0.0f};                     // coateddiffuse Henyey-Greenstein asymmetry
-  int max_depth = 10;                        // coateddiffuse random-walk length
-  int n_samples = 1;                         // coateddiffuse estimator samples
+  TexturedFloat thickness{0.01f};  // coated layers
+  TexturedRgb albedo{Rgb(0.0f)};   // coated layers' medium albedo
+  TexturedFloat g{0.0f};           // coated layers' Henyey-Greenstein asymmetry
+  int max_depth = 10;              // coated layers' random-walk length
+  int n_samples = 1;               // coated layers' estimator samples
   int displacement = -1;  // float texture (SceneDesc::pbrt_textures): bump mapping by its height along the normal
   int normal_map = -1;    // image texture (SceneDesc::pbrt_textures): a tangent-space normal map
+};
+
+// A material that is one of two others at each hit (pbrt-v4 "mix"): the second with probability `amount`, chosen
+// by a hash of the hit so that the image is the blend in expectation. Components may be mixes themselves (no
+// cycles: the loader rejects them).
+struct MaterialMixDesc {
+  std::array<int, 2> materials{-1, -1};  // indices into SceneDesc::materials
+  float amount = 0.5f;
 };
 
 // Calls f on every parameter of d (a PbrtMaterialDesc, const or not) that a texture may set (TexturedFloat /
@@ -111,12 +133,15 @@ struct PbrtMaterialDesc {
 template <typename Desc, typename F>
 void for_each_texturable(Desc& d, F&& f) {
   f(d.reflectance);
+  f(d.transmittance);
   f(d.conductor_reflectance);
   f(d.conductor_eta);
   f(d.conductor_k);
   f(d.eta);
   f(d.uroughness);
   f(d.vroughness);
+  f(d.conductor_uroughness);
+  f(d.conductor_vroughness);
   f(d.thickness);
   f(d.albedo);
   f(d.g);
@@ -136,6 +161,7 @@ struct MaterialDesc {
   bool degamma = false;
   bool has_refraction_index = false;
   std::optional<PbrtMaterialDesc> pbrt;  // set by the pbrt-v4 loader; the fields above are then unused
+  std::optional<MaterialMixDesc> mix;    // a per-hit choice between two materials; every other field is unused
 };
 
 // Triangle mesh in object space. Indices are 0-based triplets into positions.
@@ -171,6 +197,15 @@ struct TextureDesc {
   Rgb black{0.0f}, white{1.0f};                        // BlackColor, WhiteColor
 };
 
+// pbrt's "alpha" on a shape: its opacity, the constant `value` or, when texture >= 0, the float texture
+// SceneDesc::pbrt_textures[texture] at the hit (renderer/world/alpha_cutouts.h; any class and mapping, as material
+// parameters read them). Opacity 1 everywhere (the default) is no cut-out at all.
+struct ShapeAlphaDesc {
+  float value = 1.0f;
+  int texture = -1;
+  bool cuts() const { return texture >= 0 || value < 1.0f; }
+};
+
 struct MeshDesc {
   std::string name;     // for messages, e.g. "Mesh id=3"
   std::vector<Vec3f> positions;
@@ -187,6 +222,7 @@ struct MeshDesc {
   int subdivide = 0;              // Loop subdivision levels requested for this mesh
   Vec3f motion{0, 0, 0};          // MotionBlur: world-space translation over the shutter interval (at time t: t * motion)
   std::vector<int> textures;      // indices into SceneDesc::textures
+  ShapeAlphaDesc alpha;           // pbrt "alpha" (also for the instances of an instance base)
 };
 
 struct SphereDesc {
@@ -198,6 +234,22 @@ struct SphereDesc {
   std::optional<Rgb> emission;  // LightSphere radiance
   Vec3f motion{0, 0, 0};        // MotionBlur (see MeshDesc::motion)
   std::vector<int> textures;    // indices into SceneDesc::textures
+  ShapeAlphaDesc alpha;         // pbrt "alpha": the sphere is then built as a quadric (pbrt's (u, v))
+};
+
+// A pbrt-v4 disk, cylinder or partial sphere (core/quadric.h), placed by to_world. flip: its normal is the opposite
+// of the natural one (pbrt's ReverseOrientation exclusive-or a mirroring to_world), which makes the other side the
+// one that emits (one-sided emission) and the outside of a dielectric.
+struct QuadricDesc {
+  std::string name;
+  Quadric quadric;
+  Transform to_world;
+  bool flip = false;
+  int material = -1;
+  std::optional<Rgb> emission;
+  bool two_sided_emission = false;
+  Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
+  ShapeAlphaDesc alpha;
 };
 
 struct InstanceDesc {
@@ -227,11 +279,24 @@ struct AreaLightDesc {
   Rgb radiance;
   bool radiance_is_intensity = false;  // 2019 <Intensity> spelling (see README for the convention)
 };
-// Lat-long HDR map on an infinitely distant sphere (CENG795 SphericalDirectionalLight); `element` names the XML
-// element (with its line) for messages about the image.
+// An HDR image on an infinitely distant sphere (CENG795 SphericalDirectionalLight, pbrt-v4 "infinite" with
+// "filename"); `element` names the scene element (with its file and line) for messages about the image.
+//   LatLongYUp  the course's lat-long map (y up; lights/image_infinite_light.h)
+//   LatLongZUp  pbrt-v3's lat-long map: z up, u = phi / 2 pi with phi from +x towards +y, v = theta / pi
+//   EqualArea   pbrt-v4's octahedral equal-area square (z up)
+enum class EnvMapFormat { LatLongYUp, LatLongZUp, EqualArea };
 struct EnvLightDesc {
   std::string image_path;
   std::string element;
+  EnvMapFormat format = EnvMapFormat::LatLongYUp;
+  // EqualArea only: a non-square image (which pbrt-v4 refuses) with a 2:1 aspect is read as LatLongZUp, with a
+  // warning; any other non-square image is an error.
+  bool lat_long_if_not_square = false;
+  Transform light_to_world;  // the map's frame in the world (its linear part)
+  float scale = 1.0f;        // radiance = texel x scale
+  // pbrt's "illuminance" E: the scale is further multiplied by E / k, k the illuminance the map gives a surface
+  // facing the map's +z, computed as pbrt-v4 computes it (renderer/world/environment_map.h).
+  std::optional<float> illuminance;
 };
 // Constant radiance arriving from every direction (pbrt "infinite" light with "L"), seen by rays that escape.
 struct InfiniteLightDesc { Rgb radiance; };
@@ -249,6 +314,7 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;
   std::vector<MeshDesc> meshes;
   std::vector<SphereDesc> spheres;
+  std::vector<QuadricDesc> quadrics;
   std::vector<InstanceDesc> instances;
   Rgb ambient_light{0};
   std::vector<PointLightDesc> point_lights;

@@ -89,10 +89,38 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
 
 SceneTextures::~SceneTextures() = default;
 
+namespace {
+
+// The materials a hit on `material` may shade with: itself, or a mix's components (through nested mixes; the loader
+// and the world reject mixes that contain each other, `depth` stops a cycle that reaches here anyway).
+template <typename F>
+void for_each_shading_material(const SceneDesc& scene, int material, F&& f, int depth = 0) {
+  if (material < 0 || size_t(material) >= scene.materials.size() || depth > int(scene.materials.size())) return;
+  const MaterialDesc& m = scene.materials[size_t(material)];
+  if (!m.mix) {
+    f(material, m);
+    return;
+  }
+  for (int c : m.mix->materials) for_each_shading_material(scene, c, f, depth + 1);
+}
+
+bool pbrt_per_hit(const MaterialDesc& m) { return m.pbrt && needs_per_hit_evaluation(*m.pbrt); }
+
+}  // namespace
+
 bool material_needs_textures(const SceneDesc& scene, int material) {
-  if (material < 0 || size_t(material) >= scene.materials.size()) return false;
-  const auto& pbrt = scene.materials[size_t(material)].pbrt;
-  return pbrt && needs_per_hit_evaluation(*pbrt);
+  bool needs = false;
+  for_each_shading_material(scene, material, [&](int, const MaterialDesc& m) { needs = needs || pbrt_per_hit(m); });
+  return needs;
+}
+
+int SceneTextures::use_pbrt_material(const SceneDesc& scene, int material) {
+  int& slot = pbrt_material_of_desc_[size_t(material)];
+  if (slot < 0) {
+    pbrt_materials_.push_back(make_textured_material(*scene.materials[size_t(material)].pbrt, graph_));
+    slot = int(pbrt_materials_.size()) - 1;
+  }
+  return slot;
 }
 
 TextureBuildStats SceneTextures::stats() const {
@@ -123,12 +151,10 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
     if (t.bump) b.bump = i, any = true;
   }
   if (material_needs_textures(scene, material)) {
-    int& slot = pbrt_material_of_desc_[size_t(material)];
-    if (slot < 0) {
-      pbrt_materials_.push_back(make_textured_material(*scene.materials[size_t(material)].pbrt, graph_));
-      slot = int(pbrt_materials_.size()) - 1;
-    }
-    b.pbrt_material = slot;
+    for_each_shading_material(scene, material, [&](int c, const MaterialDesc& m) {
+      if (pbrt_per_hit(m)) b.pbrt_material = use_pbrt_material(scene, c);
+    });
+    b.pbrt_mix = bool(scene.materials[size_t(material)].mix);
     any = true;
   }
   if (!any) return -1;

@@ -56,6 +56,8 @@ struct TextureBinding {
   bool footprint = false;  // the kd, ks or all texture is filtered over the hit's footprint (trilinear / ewa)
   int material = -1;  // index into SceneTextures::materials (the texturable prototype) or -1: no k_d / k_s texture
   int pbrt_material = -1;  // index into SceneTextures::pbrt_materials: a pbrt-v4 material resolved per hit
+  // A mix with a component resolved per hit: the component the hit chose is looked up (pbrt_material_of).
+  bool pbrt_mix = false;
   // Procedural textures are evaluated in the object's own space (the course's: veach-ajar's floor, scaled 1.8x along
   // x by its transformation, has squares 1.8x wider along x in its reference).
   Transform to_object;
@@ -109,6 +111,10 @@ class SceneTextures {
   const std::vector<TexturableMaterial>& materials() const { return materials_; }
   const std::vector<TexturedPbrtMaterial>& pbrt_materials() const { return pbrt_materials_; }
   const TextureGraph& graph() const { return graph_; }
+  // The pbrt_materials index of SceneDesc material m, or -1 when it is not resolved per hit.
+  int pbrt_material_of(size_t m) const { return m < pbrt_material_of_desc_.size() ? pbrt_material_of_desc_[m] : -1; }
+  // Compiles pbrt-v4 texture i for a lookup outside materials (a shape's alpha); may throw as bind() does.
+  void use_pbrt_texture(int i) { graph_.use(i); }
   int background() const { return background_; }
   // What a camera ray that misses every surface sees at film position `film` (the pixel centre in [0, 1]^2, x to the
   // right, y down; renderer/integrators/integrator.h): the replace_background texture there, Normalizer and degamma applied as
@@ -126,6 +132,7 @@ class SceneTextures {
   std::vector<TexturableMaterial> materials_;
   std::vector<int> material_of_desc_;  // SceneDesc material -> materials_ index (built on first use)
   std::vector<TexturedPbrtMaterial> pbrt_materials_;
+  int use_pbrt_material(const SceneDesc& scene, int material);
   std::vector<int> pbrt_material_of_desc_;  // SceneDesc material -> pbrt_materials_ index (made on first use)
   int background_ = -1;
   // A member declared before everything that opens images, so that a constructor which throws after the texture
@@ -136,7 +143,7 @@ class SceneTextures {
 };
 
 // Whether a shape with this material (an index into SceneDesc::materials) needs the scene's textures although it has
-// no course textures: a pbrt-v4 material evaluated per hit.
+// no course textures: a pbrt-v4 material evaluated per hit, or a mix with such a component.
 bool material_needs_textures(const SceneDesc& scene, int material);
 
 }  // namespace kiln

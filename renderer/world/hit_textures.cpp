@@ -45,7 +45,10 @@ bool apply_textures(const World& w, const CameraSpread& camera, float pbrt_footp
   const SceneTextures& tex = *w.textures;
   const TextureBinding& b = tex.bindings()[size_t(si.textures)];
   if (b.pbrt_material >= 0) {
-    const TexturedPbrtMaterial& m = tex.pbrt_materials()[size_t(b.pbrt_material)];
+    // A mix's hit shades with the component it chose, which may or may not be resolved per hit.
+    const int pm = b.pbrt_mix ? tex.pbrt_material_of(size_t(si.material - w.materials.data())) : b.pbrt_material;
+    if (pm < 0) return false;
+    const TexturedPbrtMaterial& m = tex.pbrt_materials()[size_t(pm)];
     const bool smooth = w.shape_data[si.shape].normals >= 0;
     const TextureEvalContext c = pbrt_eval_context(camera, pbrt_footprint_scale, si, m.needs_footprint);
     resolve_textured_material(tex.graph(), m, c, smooth, si, scratch);

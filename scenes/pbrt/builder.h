@@ -4,10 +4,12 @@
 // (scenes/pbrt/lights.cpp), each written into the SceneDesc. Shapes and cameras are made by scenes/pbrt/shapes.h and
 // scenes/pbrt/camera.h. Everything a builder cannot render is reported through PbrtDiagnostics.
 #pragma once
+#include <array>
 #include <functional>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/transform.h"
 #include "scenes/pbrt/diagnostics.h"
@@ -25,6 +27,8 @@ inline constexpr int kPbrtDefaultCoatMaxDepth = 10;
 // Noise textures sum this many octaves at most (each is a Perlin evaluation at a frequency 1.99x the last, so more
 // would only cost time).
 inline constexpr int kPbrtMaxNoiseOctaves = 32;
+inline constexpr float kPbrtDefaultDiffuseTransmission = 0.25f;  // both "reflectance" and "transmittance"
+inline constexpr float kPbrtDefaultMixAmount = 0.5f;
 
 // An AreaLightSource in effect: the shapes that follow emit it.
 struct PbrtAreaLight {
@@ -62,10 +66,17 @@ class PbrtBuilder {
   std::optional<int> named_material(const std::string& name) const;
   // pbrt's default material (diffuse, reflectance 0.5), made on first use; `file` names the scene in messages.
   int default_material(const std::string& file);
+  // Once the whole scene is read: the names of "mix" materials' components (error: a missing one, or mixes that
+  // contain each other, at the mix's line).
+  void resolve_mixes();
 
   // Textures (scenes/pbrt/textures.cpp). to_world: the transform in effect at the directive.
   void make_texture(const std::string& name, const std::string& type, const std::string& cls, const PbrtParams& ps,
                     const Transform& to_world);
+
+  // A shape's "alpha" (scenes/pbrt/alpha.cpp): a float, or any float texture (SceneDesc::pbrt_textures). A missing
+  // texture or a spectrum texture throws.
+  ShapeAlphaDesc shape_alpha(const PbrtParams& ps);
 
   // Lights (scenes/pbrt/lights.cpp). light_to_world: the transform in effect at the directive.
   void make_light(const std::string& type, const PbrtParams& ps, const Transform& light_to_world);
@@ -85,17 +96,34 @@ class PbrtBuilder {
   int add_image_texture(const std::string& name, const ImageTextureDesc& image, bool is_float);
   void add_external_file(const std::string& path);  // once, however many textures read it
   void read_operands(const PbrtParams& ps, PbrtTextureDesc& t);
-  void read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm);
-  TexturedFloat interface_eta(const PbrtParams& ps);
+  // "<prefix>roughness", "<prefix>uroughness", "<prefix>vroughness".
+  void read_roughness(const PbrtParams& ps, const std::string& prefix, TexturedFloat& u, TexturedFloat& v);
+  TexturedFloat interface_eta(const PbrtParams& ps, const std::string& name);
+  void read_conductor(const PbrtParams& ps, const std::string& prefix, PbrtMaterialDesc& pm);
+  void read_layers(const PbrtParams& ps, PbrtMaterialDesc& pm);
+  void read_mix(const PbrtParams& ps, MaterialDesc& d);
+  std::vector<int> mix_cycle_from(int material) const;
+  std::string material_name(int material) const;
   void read_bump(const PbrtParams& ps, PbrtMaterialDesc& pm);
 
   Rgb light_spectrum(const PbrtParams& ps, const std::string& name);
-  void infinite_light(const PbrtParams& ps, float scale);
+  void infinite_light(const PbrtParams& ps, float scale, const Transform& light_to_world);
+  void image_infinite_light(const PbrtParams& ps, const std::string& file, float scale,
+                            const Transform& light_to_world);
 
   SceneDesc& scene_;
   PbrtDiagnostics diag_;
   PbrtResolver resolve_;
   std::map<std::string, int> named_materials_;
+  // A mix whose component names are resolved at the end (they may be defined after it).
+  struct PendingMix {
+    int material;
+    std::array<std::string, 2> names;
+    std::string file, context;
+    int line;
+    std::string where() const { return "line " + std::to_string(line) + " (" + context + ")"; }
+  };
+  std::vector<PendingMix> pending_mixes_;
   std::map<PbrtTextureKey, PbrtTextureDef> textures_;
   int default_material_ = -1;
 };

@@ -52,6 +52,7 @@ struct Block {
 struct ObjectDef {
   std::vector<int> meshes;  // into SceneDesc::meshes (invisible prototypes)
   std::vector<SphereDesc> spheres;
+  std::vector<QuadricDesc> quadrics;
 };
 
 struct OpenFile {
@@ -595,6 +596,8 @@ class PbrtParser {
   }
 
   void finish() {
+    include_trace_.clear();  // every file is closed: errors from here on name their own file and line
+    builder_.resolve_mixes();
     const std::string end = "line " + std::to_string(root_end_line_);
     if (current_object_)
       throw Error(root_path_, end,
@@ -611,7 +614,8 @@ class PbrtParser {
     const std::string type = read_string(cur, line, "Shape");
     PbrtParams ps = read_params(cur, line, "Shape " + in_quotes(type), gs_.defaults.shape);
     require_world(line, "Shape");
-    const PbrtShapeContext ctx{diag_, [&](const std::string& name, int l) { return resolve(name, l, ps.context()); }};
+    const PbrtShapeContext ctx{diag_, [&](const std::string& name, int l) { return resolve(name, l, ps.context()); },
+                               [&](const PbrtParams& p) { return builder_.shape_alpha(p); }};
     PbrtShape s = make_pbrt_shape(type, ps, ctx);
     diag_.report_unused(ps);
     if (s.empty()) return;
@@ -638,6 +642,18 @@ class PbrtParser {
         objects_[*current_object_].meshes.push_back(int(scene_.meshes.size()));
       }
       scene_.meshes.push_back(std::move(m));
+      return;
+    }
+    if (s.quadric) {
+      QuadricDesc& q = *s.quadric;
+      q.material = material;
+      q.to_world = to_world;
+      q.flip = flipped;
+      if (light) {
+        q.emission = light->radiance;
+        q.two_sided_emission = light->two_sided;
+      }
+      (current_object_ ? objects_[*current_object_].quadrics : scene_.quadrics).push_back(q);
       return;
     }
     SphereDesc sp = *s.sphere;
@@ -708,6 +724,11 @@ class PbrtParser {
       s.to_world = placement * s.to_world;
       s.name = label + " " + s.name;
       scene_.spheres.push_back(s);
+    }
+    for (QuadricDesc q : it->second.quadrics) {
+      q.to_world = placement * q.to_world;
+      q.name = label + " " + q.name;
+      scene_.quadrics.push_back(q);
     }
   }
 

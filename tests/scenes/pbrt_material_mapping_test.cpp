@@ -129,21 +129,21 @@ TEST(PbrtMaterialMapping, CoatedDiffuseCarriesEveryParameter) {
   const Material m = build_material(pbrt_material(d), pbrt_scene());
   ASSERT_TRUE(std::holds_alternative<CoatedDiffuse>(m.surface));
   const CoatedDiffuse& c = std::get<CoatedDiffuse>(m.surface);
-  EXPECT_EQ(c.reflectance, d.reflectance);
-  EXPECT_EQ(c.coat.eta, 1.6f);
-  EXPECT_FLOAT_EQ(c.coat.distribution.alpha_x, std::sqrt(0.025f));
-  EXPECT_EQ(c.thickness, 0.05f);
-  EXPECT_EQ(c.albedo, Rgb(0.3f, 1.0f, 0.0f));
-  EXPECT_EQ(c.g, -0.3f);
-  EXPECT_EQ(c.max_depth, 7);
-  EXPECT_EQ(c.n_samples, 3);
-  EXPECT_EQ(c.exit_weight, LayeredExitWeight::Consistent);
+  EXPECT_EQ(c.base.reflectance, d.reflectance);
+  EXPECT_EQ(c.layers.coat.eta, 1.6f);
+  EXPECT_FLOAT_EQ(c.layers.coat.distribution.alpha_x, std::sqrt(0.025f));
+  EXPECT_EQ(c.layers.thickness, 0.05f);
+  EXPECT_EQ(c.layers.albedo, Rgb(0.3f, 1.0f, 0.0f));
+  EXPECT_EQ(c.layers.g, -0.3f);
+  EXPECT_EQ(c.layers.max_depth, 7);
+  EXPECT_EQ(c.layers.n_samples, 3);
+  EXPECT_EQ(c.layers.exit_weight, LayeredExitWeight::Consistent);
   EXPECT_FALSE(m.has_delta());
   EXPECT_FALSE(m.oriented());
   // pbrt's defaults: a smooth coat, whose mirror reflection is a specular lobe of the surface part.
   const Material def = build_material(pbrt_material(of_kind(PbrtMaterialKind::CoatedDiffuse)), pbrt_scene());
   EXPECT_TRUE(def.flags() & kLobeSpecular);
-  EXPECT_TRUE(std::get<CoatedDiffuse>(def.surface).coat.is_specular());
+  EXPECT_TRUE(std::get<CoatedDiffuse>(def.surface).layers.coat.is_specular());
 }
 
 TEST(PbrtMaterialMapping, InterfacePassesThrough) {
@@ -189,6 +189,13 @@ TEST(PbrtMaterialMapping, BadValuesNameFileMaterialAndType) {
   add(K::CoatedDiffuse, [](auto& d) { d.max_depth = -1; }, "maxdepth must be in [0, 10000]");
   add(K::CoatedDiffuse, [](auto& d) { d.albedo = Rgb(0.5f, -1.0f, 0.5f); }, "albedo must be finite");
   add(K::CoatedDiffuse, [](auto& d) { d.eta = NAN; }, "eta must be a positive number");
+  add(K::CoatedConductor, [](auto& d) { d.conductor_uroughness = -0.1f; },
+      "pbrt coatedconductor material: conductor.uroughness");
+  add(K::CoatedConductor, [](auto& d) { d.eta = 0.0f; }, "interface.eta must be a positive number");
+  add(K::CoatedConductor, [](auto& d) { d.g = -1.0f; }, "g must lie strictly between -1 and 1");
+  add(K::DiffuseTransmission, [](auto& d) { d.scale = -1.0f; }, "pbrt diffusetransmission material: scale");
+  add(K::DiffuseTransmission, [](auto& d) { d.transmittance = Rgb(0.5f, -1.0f, 0.5f); }, "transmittance must be");
+  add(K::ThinDielectric, [](auto& d) { d.eta = 0.0f; }, "pbrt thindielectric material: eta must be a positive");
   for (const Case& c : cases) {
     const std::string e = error_of(c.desc);
     EXPECT_NE(e.find("scene.pbrt"), std::string::npos) << e;

@@ -103,6 +103,25 @@ TEST(PbrtTextureRender, CheckerboardReflectanceIsTheUntexturedRenderOfEachCell) 
   EXPECT_GT(checked[1], 400);
 }
 
+// A mix shades with the component each hit chooses, textured parameters included: with amount 1 every hit takes the
+// textured component, and the image is the component's own render, bit for bit (a mix whose component kept its
+// untextured placeholder would render the default reflectance instead).
+TEST(PbrtTextureRender, AMixResolvesItsTexturedComponentPerHit) {
+  const std::string checker =
+      "Texture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" 4 \"float vscale\" 4"
+      " \"rgb tex1\" [0.8 0.7 0.6] \"rgb tex2\" [0.1 0.2 0.3]\n";
+  const Rendered direct = render(quad_scene("mix_direct", checker + "Material \"diffuse\" \"texture reflectance\" \"c\"\n"));
+  const Rendered mixed = render(quad_scene(
+      "mix_textured", checker +
+                          "MakeNamedMaterial \"grey\" \"string type\" \"diffuse\"\n"
+                          "MakeNamedMaterial \"checks\" \"string type\" \"diffuse\" \"texture reflectance\" \"c\"\n"
+                          "Material \"mix\" \"string materials\" [\"grey\" \"checks\"] \"float amount\" 1\n"));
+  ASSERT_TRUE(mixed.world->features & kFeatureMix);
+  ASSERT_EQ(mixed.image.width(), direct.image.width());
+  for (int y = 0; y < kRes; ++y)
+    for (int x = 0; x < kRes; ++x) ASSERT_EQ(mixed.image.at(x, y), direct.image.at(x, y)) << x << "," << y;
+}
+
 // An 8-bit sRGB PNG of 4 x 4 distinct texels (point filtered): each pixel inside a texel is the white render times
 // the texel's decoded value, with row 0 of the file at the top of the uv square (v = 1).
 TEST(PbrtTextureRender, ImagemapReflectanceIsTheDecodedTexelWithVUp) {

@@ -9,15 +9,12 @@
 
 #include "core/error.h"
 #include "scenes/pbrt/loader.h"
+#include "pbrt_test_util.h"
 
 namespace kiln {
 namespace {
 
 namespace fs = std::filesystem;
-
-const std::string kHead =
-    "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
-    "\"integer yresolution\" 8\nWorldBegin\n";  // the world starts on line 5
 
 // A folder with a scene file's neighbours: tex.png (a 1x1 PNG: only its existence matters to the loader).
 std::string scene_dir() {
@@ -28,16 +25,8 @@ std::string scene_dir() {
   return d.string();
 }
 
-SceneDesc parse(const std::string& world) { return parse_pbrt(kHead + world, scene_dir() + "/scene.pbrt"); }
-
-std::string error_of(const std::string& world) {
-  try {
-    parse(world);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+SceneDesc parse(const std::string& world) { return parse_world(world, scene_dir()); }
+std::string error_of(const std::string& world) { return world_error(world, scene_dir()); }
 
 const PbrtTextureDesc& last_texture(const SceneDesc& s) { return s.pbrt_textures.back(); }
 
@@ -81,6 +70,41 @@ TEST(PbrtTextures, EveryTexturableParameterKeepsItsTexture) {
   const PbrtMaterialDesc& glass = *s.materials[2].pbrt;
   EXPECT_EQ(glass.eta.texture, 1);
   EXPECT_EQ(glass.vroughness.texture, 1);
+}
+
+// The materials with several layers or sides: every parameter pbrt-v4 lets a texture set keeps it; a mix's amount
+// is read as a constant (warned).
+TEST(PbrtTextures, CoatedConductorDiffuseTransmissionAndThinDielectricKeepTheirTextures) {
+  const SceneDesc s = parse(
+      "Texture \"c\" \"spectrum\" \"checkerboard\"\n"
+      "Texture \"f\" \"float\" \"fbm\"\n"
+      "Material \"coatedconductor\" \"texture interface.roughness\" \"f\" \"texture conductor.vroughness\" \"f\"\n"
+      "  \"texture conductor.eta\" \"c\" \"texture conductor.k\" \"c\" \"texture albedo\" \"c\" \"texture g\" \"f\"\n"
+      "Shape \"sphere\"\n"
+      "Material \"diffusetransmission\" \"texture reflectance\" \"c\" \"texture transmittance\" \"c\"\n"
+      "Shape \"sphere\"\n"
+      "Material \"thindielectric\" \"texture eta\" \"f\"\n"
+      "Shape \"sphere\"\n"
+      "MakeNamedMaterial \"a\" \"string type\" \"diffuse\"\n"
+      "Material \"mix\" \"string materials\" [\"a\" \"a\"] \"texture amount\" \"f\"\n"
+      "Shape \"sphere\"\n");
+  const PbrtMaterialDesc& coat = *s.materials[0].pbrt;
+  EXPECT_EQ(coat.uroughness.texture, 1);
+  EXPECT_EQ(coat.vroughness.texture, 1);
+  EXPECT_FALSE(coat.conductor_uroughness.textured());
+  EXPECT_EQ(coat.conductor_vroughness.texture, 1);
+  EXPECT_EQ(coat.conductor_eta.texture, 0);
+  EXPECT_EQ(coat.conductor_k.texture, 0);
+  EXPECT_EQ(coat.albedo.texture, 0);
+  EXPECT_EQ(coat.g.texture, 1);
+  const PbrtMaterialDesc& leaf = *s.materials[1].pbrt;
+  EXPECT_EQ(leaf.reflectance.texture, 0);
+  EXPECT_EQ(leaf.transmittance.texture, 0);
+  EXPECT_EQ(s.materials[2].pbrt->eta.texture, 1);
+  ASSERT_TRUE(s.materials.back().mix);
+  EXPECT_EQ(s.materials.back().mix->amount, 0.5f);  // pbrt's default
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("textured \"amount\""), std::string::npos) << s.warnings[0];
 }
 
 TEST(PbrtTextures, ClassesReadTheirOperandsWithPbrtDefaults) {
