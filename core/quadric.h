@@ -95,6 +95,24 @@ struct Quadric {
     }
     return {u, 0.0f};
   }
+  // The surface point of parameters (u, v): the inverse of uv().
+  Vec3f point_at(Vec2f uv) const {
+    const float phi = uv.x * phi_max, c = std::cos(phi), s = std::sin(phi);
+    switch (type) {
+      case QuadricType::Disk: {
+        const float r = radius - uv.y * (radius - inner_radius);
+        return {r * c, r * s, height};
+      }
+      case QuadricType::Cylinder: return {radius * c, radius * s, lerp(uv.y, z_min, z_max)};
+      case QuadricType::Sphere: {
+        const float theta_min = safe_acos(z_min / radius);
+        const float theta = lerp(uv.y, theta_min, safe_acos(z_max / radius));
+        const float ring = radius * std::sin(theta);
+        return {ring * c, ring * s, radius * std::cos(theta)};
+      }
+    }
+    return {};
+  }
   // dp/du and dp/dv at a surface point (pbrt-v4's parametrisation above).
   void derivatives(Vec3f p, Vec3f& dpdu, Vec3f& dpdv) const {
     dpdu = Vec3f(-p.y, p.x, 0.0f) * phi_max;

@@ -1,5 +1,7 @@
 #include "scenes/material_mapping.h"
 
+#include <algorithm>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -107,77 +109,143 @@ const char* pbrt_kind_name(PbrtMaterialKind k) {
   return "?";
 }
 
-class PbrtContext {
+// Load-time checks of a pbrt material's constant parameters: bad values name the file, the material and its type.
+// Textured parameters are not checked here (their values are only known at a hit, where build_pbrt_material brings
+// them into range).
+class PbrtCheck {
  public:
-  PbrtContext(const Context& ctx, const PbrtMaterialDesc& d) : ctx_(ctx), d_(d) {}
+  PbrtCheck(const Context& ctx, const PbrtMaterialDesc& d) : ctx_(ctx), d_(d) {}
   [[noreturn]] void fail(const std::string& what) const {
     ctx_.fail(std::string("pbrt ") + pbrt_kind_name(d_.kind) + " material: " + what);
   }
-  // Finite and non-negative, then clamped to [0, hi] as pbrt-v4 clamps albedo-like spectra.
-  Rgb albedo_like(Rgb c, const char* name, float hi = 1.0f) const {
-    if (!c.is_finite() || c.has_negative()) fail(std::string(name) + " must be finite and non-negative");
-    for (int i = 0; i < 3; ++i) c[i] = std::min(c[i], hi);
-    return c;
+  void colour(const TexturedRgb& c, const char* name) const {
+    if (!c.textured() && (!c.value.is_finite() || c.value.has_negative()))
+      fail(std::string(name) + " must be finite and non-negative");
   }
-  float non_negative(float v, const char* name) const {
-    if (!std::isfinite(v) || v < 0.0f) fail(std::string(name) + " must be a non-negative number, got " + std::to_string(v));
-    return v;
+  void non_negative(const TexturedFloat& v, const char* name) const {
+    if (!v.textured() && (!std::isfinite(v.value) || v.value < 0.0f))
+      fail(std::string(name) + " must be a non-negative number, got " + std::to_string(v.value));
   }
-  float positive(float v, const char* name) const {
-    if (!std::isfinite(v) || !(v > 0.0f)) fail(std::string(name) + " must be a positive number, got " + std::to_string(v));
-    return v;
+  void positive(const TexturedFloat& v, const char* name) const {
+    if (!v.textured() && (!std::isfinite(v.value) || !(v.value > 0.0f)))
+      fail(std::string(name) + " must be a positive number, got " + std::to_string(v.value));
   }
-  TrowbridgeReitz distribution() const { return distribution(d_.uroughness, d_.vroughness, "uroughness", "vroughness"); }
-  TrowbridgeReitz distribution(float u, float v, const char* u_name, const char* v_name) const {
-    u = non_negative(u, u_name);
-    v = non_negative(v, v_name);
-    if (!d_.remap_roughness) return TrowbridgeReitz(u, v);
-    return TrowbridgeReitz(TrowbridgeReitz::roughness_to_alpha(u), TrowbridgeReitz::roughness_to_alpha(v));
+  void check() const {
+    const bool coated = d_.kind == PbrtMaterialKind::CoatedConductor;
+    non_negative(d_.uroughness, coated ? "interface.uroughness" : "uroughness");
+    non_negative(d_.vroughness, coated ? "interface.vroughness" : "vroughness");
+    switch (d_.kind) {
+      case PbrtMaterialKind::Diffuse:
+        colour(d_.reflectance, "reflectance");
+        break;
+      case PbrtMaterialKind::Conductor:
+        conductor();
+        break;
+      case PbrtMaterialKind::Dielectric:
+      case PbrtMaterialKind::ThinDielectric:
+        positive(d_.eta, "eta");
+        break;
+      case PbrtMaterialKind::CoatedDiffuse:
+        layers();
+        colour(d_.reflectance, "reflectance");
+        positive(d_.eta, "eta");
+        break;
+      case PbrtMaterialKind::CoatedConductor:
+        layers();
+        positive(d_.eta, "interface.eta");
+        non_negative(d_.conductor_uroughness, "conductor.uroughness");
+        non_negative(d_.conductor_vroughness, "conductor.vroughness");
+        conductor();
+        break;
+      case PbrtMaterialKind::DiffuseTransmission:
+        if (!std::isfinite(d_.scale) || d_.scale < 0.0f)
+          fail("scale must be a non-negative number, got " + std::to_string(d_.scale));
+        colour(d_.reflectance, "reflectance");
+        colour(d_.transmittance, "transmittance");
+        break;
+      case PbrtMaterialKind::Interface:
+        break;
+    }
   }
-  // The coat (interface index eta, the material's roughness) and the medium under it, checked: the random walk's
-  // limits, g in (-1, 1), thickness and albedo.
-  LayerStack layers(float eta) const {
-    check_layers();
-    return LayerStack{RoughDielectric{eta, distribution()}, non_negative(d_.thickness, "thickness"),
-                      albedo_like(d_.albedo, "albedo"), d_.g, d_.max_depth, d_.n_samples};
+
+ private:
+  void conductor() const {
+    if (d_.conductor_by_reflectance) {
+      colour(d_.conductor_reflectance, "reflectance");
+    } else {
+      colour(d_.conductor_eta, "eta");
+      colour(d_.conductor_k, "k");
+    }
   }
-  void check_layers() const {
-    if (!std::isfinite(d_.g) || !(std::abs(d_.g) < 1.0f))
-      fail("g must lie strictly between -1 and 1, got " + std::to_string(d_.g));
+  // The coated materials' random walk and medium: its limits, g in (-1, 1), thickness and albedo.
+  void layers() const {
+    if (!d_.g.textured() && (!std::isfinite(d_.g.value) || !(std::abs(d_.g.value) < 1.0f)))
+      fail("g must lie strictly between -1 and 1, got " + std::to_string(d_.g.value));
     if (d_.max_depth < 0 || d_.max_depth > kMaxPbrtLayeredDepth)
       fail("maxdepth must be in [0, " + std::to_string(kMaxPbrtLayeredDepth) + "], got " + std::to_string(d_.max_depth));
     if (d_.n_samples < 1 || d_.n_samples > kMaxPbrtLayeredSamples)
       fail("nsamples must be in [1, " + std::to_string(kMaxPbrtLayeredSamples) + "], got " + std::to_string(d_.n_samples));
-  }
-  RgbComplexIor conductor_ior() const {
-    if (d_.conductor_reflectance) {
-      // pbrt-v4: eta = 1 and k = 2 sqrt(r) / sqrt(1 - r), whose normal-incidence reflectance is exactly r.
-      const Rgb r = albedo_like(*d_.conductor_reflectance, "reflectance", kMaxPbrtConductorReflectance);
-      Rgb k;
-      for (int i = 0; i < 3; ++i) k[i] = 2.0f * std::sqrt(r[i]) / std::sqrt(1.0f - r[i]);
-      return {Rgb(1.0f), k};
-    }
-    const Rgb eta = d_.conductor_eta, k = d_.conductor_k;
-    if (!eta.is_finite() || eta.has_negative()) fail("eta must be finite and non-negative");
-    if (!k.is_finite() || k.has_negative()) fail("k must be finite and non-negative");
-    return {eta, k};
+    colour(d_.albedo, "albedo");
+    non_negative(d_.thickness, "thickness");
   }
 
- private:
   const Context& ctx_;
   const PbrtMaterialDesc& d_;
 };
 
-Material build_pbrt_material(const PbrtMaterialDesc& d, const Context& ctx) {
-  const PbrtContext p(ctx, d);
+// Values brought into their domain (checked constants pass unchanged; a texture may give anything).
+float finite_or(float v, float fallback) { return std::isfinite(v) ? v : fallback; }
+float non_negative(float v) { return std::max(finite_or(v, 0.0f), 0.0f); }
+Rgb clamped(Rgb c, float hi) {
+  for (int i = 0; i < 3; ++i) c[i] = std::clamp(finite_or(c[i], 0.0f), 0.0f, hi);
+  return c;
+}
+Rgb non_negative(Rgb c) { return clamped(c, std::numeric_limits<float>::max()); }
+// An index of refraction that is not positive means no interface (pbrt-v4 reads eta 0 as 1).
+float ior(float eta) { return eta > 0.0f && std::isfinite(eta) ? eta : 1.0f; }
+
+TrowbridgeReitz distribution(const PbrtMaterialDesc& d, const TexturedFloat& ur, const TexturedFloat& vr) {
+  const float u = non_negative(ur.value), v = non_negative(vr.value);
+  if (!d.remap_roughness) return TrowbridgeReitz(u, v);
+  return TrowbridgeReitz(TrowbridgeReitz::roughness_to_alpha(u), TrowbridgeReitz::roughness_to_alpha(v));
+}
+TrowbridgeReitz distribution(const PbrtMaterialDesc& d) { return distribution(d, d.uroughness, d.vroughness); }
+
+RgbComplexIor conductor_ior(const PbrtMaterialDesc& d) {
+  if (d.conductor_by_reflectance) {
+    // pbrt-v4: eta = 1 and k = 2 sqrt(r) / sqrt(1 - r), whose normal-incidence reflectance is exactly r.
+    const Rgb r = clamped(d.conductor_reflectance.value, kMaxPbrtConductorReflectance);
+    Rgb k;
+    for (int i = 0; i < 3; ++i) k[i] = 2.0f * std::sqrt(r[i]) / std::sqrt(1.0f - r[i]);
+    return {Rgb(1.0f), k};
+  }
+  return {non_negative(d.conductor_eta.value), non_negative(d.conductor_k.value)};
+}
+
+// A texture's |g| >= 1 is brought to this (the Henyey-Greenstein phase function is a delta at |g| = 1).
+constexpr float kMaxTexturedG = 0.999f;
+float asymmetry(float g) {
+  if (!std::isfinite(g)) return 0.0f;
+  return std::abs(g) < 1.0f ? g : std::copysign(kMaxTexturedG, g);
+}
+
+// The coat of index eta (the material's roughness) and the medium under it.
+LayerStack layers(const PbrtMaterialDesc& d, float eta) {
+  return LayerStack{RoughDielectric{eta, distribution(d)}, non_negative(d.thickness.value),
+                    clamped(d.albedo.value, 1.0f), asymmetry(d.g.value), d.max_depth, d.n_samples};
+}
+
+}  // namespace
+
+Material build_pbrt_material(const PbrtMaterialDesc& d) {
   Material out;
   switch (d.kind) {
     case PbrtMaterialKind::Diffuse:
-      out.surface = Lambert{p.albedo_like(d.reflectance, "reflectance")};
+      out.surface = Lambert{clamped(d.reflectance.value, 1.0f)};
       break;
     case PbrtMaterialKind::Conductor: {
-      const TrowbridgeReitz tr = p.distribution();
-      const RgbComplexIor ior = p.conductor_ior();
+      const TrowbridgeReitz tr = distribution(d);
+      const RgbComplexIor ior = conductor_ior(d);
       if (tr.effectively_smooth())
         out.delta = Conductor{Rgb(1.0f), 1.0f, 0.0f, ior};
       else
@@ -185,8 +253,8 @@ Material build_pbrt_material(const PbrtMaterialDesc& d, const Context& ctx) {
       break;
     }
     case PbrtMaterialKind::Dielectric: {
-      const TrowbridgeReitz tr = p.distribution();
-      const float eta = p.positive(d.eta, "eta");
+      const TrowbridgeReitz tr = distribution(d);
+      const float eta = ior(d.eta.value);
       // eta = 1 is no interface at all (pbrt treats it as a specular pass-through, rough or not).
       if (eta == 1.0f || tr.effectively_smooth())
         out.delta = Dielectric{eta};
@@ -195,27 +263,25 @@ Material build_pbrt_material(const PbrtMaterialDesc& d, const Context& ctx) {
       break;
     }
     case PbrtMaterialKind::CoatedDiffuse:
-      out.surface =
-          CoatedDiffuse{{p.layers(p.positive(d.eta, "eta")), Lambert{p.albedo_like(d.reflectance, "reflectance")}}};
+      out.surface = CoatedDiffuse{{layers(d, ior(d.eta.value)), Lambert{clamped(d.reflectance.value, 1.0f)}}};
       break;
     case PbrtMaterialKind::CoatedConductor: {
-      const float eta = p.positive(d.eta, "interface.eta");
+      const float eta = ior(d.eta.value);
       // The conductor lies under the coat: its index relative to the coat's (pbrt-v4 divides eta and k by it).
-      const RgbComplexIor ior = p.conductor_ior();
-      const TrowbridgeReitz base = p.distribution(d.conductor_uroughness, d.conductor_vroughness,
-                                                  "conductor.uroughness", "conductor.vroughness");
-      out.surface = CoatedConductor{{p.layers(eta), RoughConductor{base, {ior.eta / eta, ior.k / eta}}}};
+      const RgbComplexIor c = conductor_ior(d);
+      const TrowbridgeReitz base = distribution(d, d.conductor_uroughness, d.conductor_vroughness);
+      out.surface = CoatedConductor{{layers(d, eta), RoughConductor{base, {c.eta / eta, c.k / eta}}}};
       break;
     }
     case PbrtMaterialKind::DiffuseTransmission: {
-      const float scale = p.non_negative(d.scale, "scale");
+      const float scale = non_negative(d.scale);
       // pbrt-v4 scales first, then clamps to [0, 1].
-      out.surface = DiffuseTransmission{p.albedo_like(d.reflectance * scale, "reflectance"),
-                                        p.albedo_like(d.transmittance * scale, "transmittance")};
+      out.surface = DiffuseTransmission{clamped(d.reflectance.value * scale, 1.0f),
+                                        clamped(d.transmittance.value * scale, 1.0f)};
       break;
     }
     case PbrtMaterialKind::ThinDielectric:
-      out.delta = ThinDielectric{p.positive(d.eta, "eta")};
+      out.delta = ThinDielectric{ior(d.eta.value)};
       break;
     case PbrtMaterialKind::Interface:
       out.passes_through = true;
@@ -224,6 +290,8 @@ Material build_pbrt_material(const PbrtMaterialDesc& d, const Context& ctx) {
   }
   return out;
 }
+
+namespace {
 
 // Per-unit-length transmittance a -> Beer-Lambert coefficient -ln(a).
 Rgb absorption_from_transparency(Rgb a) {
@@ -237,7 +305,10 @@ Rgb absorption_from_transparency(Rgb a) {
 Material build_material(const MaterialDesc& m, const SceneDesc& scene) {
   const Context ctx(m, scene);
   if (m.mix) return Material{};  // never shaded: the world resolves a mix to one of its components at each hit
-  if (m.pbrt) return build_pbrt_material(*m.pbrt, ctx);
+  if (m.pbrt) {
+    PbrtCheck(ctx, *m.pbrt).check();
+    return build_pbrt_material(*m.pbrt);
+  }
   ctx.check_colour(m.ambient, "AmbientReflectance");
   ctx.check_colour(m.diffuse, "DiffuseReflectance");
   ctx.check_colour(m.specular, "SpecularReflectance");

@@ -49,7 +49,8 @@
 //                       straight through with no change of medium (the material is not oriented()).
 //   * interface      -> passes_through, with a Dielectric(1) pass-through delta for integrators that ignore it.
 // Bad pbrt values (negative or non-finite roughness, thickness, colours, scale; eta <= 0; |g| >= 1; maxdepth or
-// nsamples out of range) throw kiln::Error naming the file, "Material id=N" and the pbrt material type.
+// nsamples out of range) throw kiln::Error naming the file, "Material id=N" and the pbrt material type; parameters
+// set by textures are only known at a hit and are brought into range there (build_pbrt_material).
 // A mix (MaterialDesc::mix, any format) builds to an empty placeholder: the world picks one of its components at
 // each hit (renderer/world/material_mix.h), so the placeholder is never shaded.
 //
@@ -74,5 +75,12 @@ inline constexpr int kMaxPbrtLayeredSamples = 1024;
 inline constexpr float kDegammaExponent = 2.2f;
 
 Material build_material(const MaterialDesc& desc, const SceneDesc& scene);
+
+// The BxDFs of a pbrt-v4 material from its parameters' values (every TexturedFloat / TexturedRgb's `value`; for a
+// textured parameter, what its texture gave at the hit). Values outside a parameter's domain are brought into it
+// (colours clamped as above, negative roughness and thickness to 0, eta <= 0 read as 1, |g| below 1) instead of
+// throwing: build_material has already checked the constants, and a texture may give anything. The per-hit
+// evaluation (renderer/texture/textured_material.h) calls it for every textured hit, so it allocates nothing.
+Material build_pbrt_material(const PbrtMaterialDesc& d);
 
 }  // namespace kiln

@@ -10,6 +10,7 @@
 #include "core/color.h"
 #include "core/quadric.h"
 #include "core/transform.h"
+#include "scenes/texture_graph.h"
 
 namespace kiln {
 
@@ -83,7 +84,9 @@ struct BrdfDesc {
 enum class MaterialType { Plain, Mirror, Dielectric, Conductor };
 
 // pbrt-v4 materials (scenes/pbrt/materials.cpp fills this, scenes/material_mapping builds it). Spectral parameters are
-// already reduced to linear RGB by the loader.
+// already reduced to linear RGB by the loader. A parameter pbrt lets a texture set is a TexturedFloat / TexturedRgb:
+// untextured, its value is the parameter; textured, the material is built again at every hit from the textures'
+// values there (renderer/texture/textured_material.h).
 enum class PbrtMaterialKind {
   Diffuse,
   Conductor,
@@ -96,22 +99,25 @@ enum class PbrtMaterialKind {
 };
 struct PbrtMaterialDesc {
   PbrtMaterialKind kind = PbrtMaterialKind::Diffuse;
-  Rgb reflectance{0.5f};                     // diffuse, coateddiffuse, diffusetransmission
-  Rgb transmittance{0.25f};                  // diffusetransmission
+  TexturedRgb reflectance{Rgb(0.5f)};        // diffuse, coateddiffuse, diffusetransmission
+  TexturedRgb transmittance{Rgb(0.25f)};     // diffusetransmission
   float scale = 1.0f;                        // diffusetransmission: multiplies reflectance and transmittance
-  std::optional<Rgb> conductor_reflectance;  // (coated) conductor given by "reflectance" instead of eta / k
-  Rgb conductor_eta{0.2f, 0.92f, 1.1f};      // (coated) conductor complex IOR (pbrt's default is copper)
-  Rgb conductor_k{3.91f, 2.45f, 2.14f};
-  float eta = 1.5f;  // dielectric / thindielectric IOR, coateddiffuse / coatedconductor interface IOR
-  float uroughness = 0.0f, vroughness = 0.0f;  // as written in the file ("roughness" sets both); coatedconductor:
-                                               // the interface's
-  float conductor_uroughness = 0.0f, conductor_vroughness = 0.0f;  // coatedconductor: the conductor's
+  bool conductor_by_reflectance = false;     // (coated) conductor given by "reflectance" (conductor_reflectance)
+  TexturedRgb conductor_reflectance{Rgb(1.0f)};
+  TexturedRgb conductor_eta{Rgb(0.2f, 0.92f, 1.1f)};  // (coated) conductor complex IOR (pbrt's default is copper)
+  TexturedRgb conductor_k{Rgb(3.91f, 2.45f, 2.14f)};
+  TexturedFloat eta{1.5f};  // dielectric / thindielectric IOR, coateddiffuse / coatedconductor interface IOR
+  TexturedFloat uroughness{0.0f}, vroughness{0.0f};  // as written in the file ("roughness" sets both);
+                                                     // coatedconductor: the interface's
+  TexturedFloat conductor_uroughness{0.0f}, conductor_vroughness{0.0f};  // coatedconductor: the conductor's
   bool remap_roughness = true;
-  float thickness = 0.01f;  // coated layers
-  Rgb albedo{0.0f};         // coated layers' medium albedo
-  float g = 0.0f;           // coated layers' Henyey-Greenstein asymmetry
-  int max_depth = 10;       // coated layers' random-walk length
-  int n_samples = 1;        // coated layers' estimator samples
+  TexturedFloat thickness{0.01f};  // coated layers
+  TexturedRgb albedo{Rgb(0.0f)};   // coated layers' medium albedo
+  TexturedFloat g{0.0f};           // coated layers' Henyey-Greenstein asymmetry
+  int max_depth = 10;              // coated layers' random-walk length
+  int n_samples = 1;               // coated layers' estimator samples
+  int displacement = -1;  // float texture (SceneDesc::pbrt_textures): bump mapping by its height along the normal
+  int normal_map = -1;    // image texture (SceneDesc::pbrt_textures): a tangent-space normal map
 };
 
 // A material that is one of two others at each hit (pbrt-v4 "mix"): the second with probability `amount`, chosen
@@ -121,6 +127,25 @@ struct MaterialMixDesc {
   std::array<int, 2> materials{-1, -1};  // indices into SceneDesc::materials
   float amount = 0.5f;
 };
+
+// Calls f on every parameter of d (a PbrtMaterialDesc, const or not) that a texture may set (TexturedFloat /
+// TexturedRgb): what the per-hit evaluation fills in. A new texturable parameter must be listed here.
+template <typename Desc, typename F>
+void for_each_texturable(Desc& d, F&& f) {
+  f(d.reflectance);
+  f(d.transmittance);
+  f(d.conductor_reflectance);
+  f(d.conductor_eta);
+  f(d.conductor_k);
+  f(d.eta);
+  f(d.uroughness);
+  f(d.vroughness);
+  f(d.conductor_uroughness);
+  f(d.conductor_vroughness);
+  f(d.thickness);
+  f(d.albedo);
+  f(d.g);
+}
 
 struct MaterialDesc {
   int id = 0;
@@ -173,20 +198,11 @@ struct TextureDesc {
 };
 
 // pbrt's "alpha" on a shape: its opacity, the constant `value` or, when texture >= 0, the float texture
-// SceneDesc::textures[texture] read at the hit's (u, v) through `image` (renderer/world/alpha_cutouts.h). Opacity 1
-// everywhere (the default) is no cut-out at all.
-enum class AlphaEncoding { Linear, Srgb, Gamma };
-struct AlphaImageDesc {
-  float su = 1.0f, sv = 1.0f, du = 0.0f, dv = 0.0f;  // pbrt's uv mapping: s = su u + du, t = sv v + dv
-  AlphaEncoding encoding = AlphaEncoding::Linear;    // how the file's 8-bit values become linear
-  float gamma = 2.2f;                                // AlphaEncoding::Gamma
-  float scale = 1.0f;
-  bool invert = false;  // max(0, 1 - value)
-};
+// SceneDesc::pbrt_textures[texture] at the hit (renderer/world/alpha_cutouts.h; any class and mapping, as material
+// parameters read them). Opacity 1 everywhere (the default) is no cut-out at all.
 struct ShapeAlphaDesc {
   float value = 1.0f;
   int texture = -1;
-  AlphaImageDesc image;
   bool cuts() const { return texture >= 0 || value < 1.0f; }
 };
 
@@ -311,6 +327,7 @@ struct SceneDesc {
   // default (README, "Course conventions").
   std::optional<bool> backface_culling;
   std::vector<TextureDesc> textures;
+  std::vector<PbrtTextureDesc> pbrt_textures;  // pbrt-v4 texture graphs (scenes/texture_graph.h), read only when used
   std::optional<int> background_texture;  // index into textures: what camera rays that miss see (replace_background)
   bool png_gamma_encode = false;  // CS171: the PNG preview applies gamma 2.2 (no tonemap)
   // Files the render reads that the loader does not read itself (texture images, environment maps, volume grids):

@@ -110,13 +110,23 @@ int cmd_info(const std::string& path, int subdivide, const RuleOverrides& overri
               (world->features & kFeatureTextures) ? "yes" : "no", ws.cone_sampler_built ? "yes" : "no",
               ws.moving_shapes > 0 ? ("yes (" + std::to_string(ws.moving_shapes) + " moving shapes)").c_str() : "no");
   if (world->textures) {
-    const TextureBuildStats& t = world->textures->stats();
-    std::printf("textures: %zu (%zu image, %zu procedural) on %zu textured shape bindings; OpenImageIO texture system %s",
-                t.textures, t.images, t.procedural, t.bindings, t.texture_system_built ? "built" : "not built");
+    const TextureBuildStats t = world->textures->stats();
+    std::printf("textures: ");
+    if (t.textures > 0)
+      std::printf("%zu (%zu image, %zu procedural) on %zu textured shape bindings; ", t.textures, t.images,
+                  t.procedural, t.bindings);
+    std::printf("OpenImageIO texture system %s", t.texture_system_built ? "built" : "not built");
     if (t.texture_system_built) std::printf(" (cache bound %.0f MB)", double(t.cache_limit_mb));
     if (t.filtered > 0)
       std::printf("; %zu filtered over a footprint, computed on %zu bindings", t.filtered, t.footprint_bindings);
     std::printf("\n");
+    if (t.pbrt.defined > 0 || t.textured_materials > 0)
+      std::printf("pbrt textures: %zu defined, %zu used by rendered materials or alpha (%zu image files); %zu materials "
+                  "evaluated per hit\n",
+                  t.pbrt.defined, t.pbrt.compiled, t.pbrt.images, t.textured_materials);
+  } else if (!s.pbrt_textures.empty()) {
+    std::printf("pbrt textures: %zu defined, none used by a rendered material (no texture system built)\n",
+                s.pbrt_textures.size());
   }
   print_identity(fingerprint);
   for (const std::string& w : world->warnings) std::printf("warning: %s\n", w.c_str());

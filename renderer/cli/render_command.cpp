@@ -38,7 +38,7 @@ std::string stem_of(const std::string& image_name, const std::string& fallback) 
 // What the scene's textures built: nothing without textures; the OpenImageIO cache only with image textures.
 nlohmann::json texture_stats_json(const World& w) {
   if (!w.textures) return {{"built", false}};
-  const TextureBuildStats& t = w.textures->stats();
+  const TextureBuildStats t = w.textures->stats();
   const TextureCacheStats c = w.textures->cache_stats();
   return {{"built", true},
           {"textures", t.textures},
@@ -47,6 +47,10 @@ nlohmann::json texture_stats_json(const World& w) {
           {"textured_shape_bindings", t.bindings},
           {"filtered_images", t.filtered},
           {"footprint_bindings", t.footprint_bindings},
+          {"pbrt_textures_defined", t.pbrt.defined},
+          {"pbrt_textures_used", t.pbrt.compiled},
+          {"pbrt_texture_images", t.pbrt.images},
+          {"per_hit_materials", t.textured_materials},
           {"texture_system", t.texture_system_built},
           {"cache_limit_mb", t.cache_limit_mb},
           {"cache_memory_bytes", c.memory_used},

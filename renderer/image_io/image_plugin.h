@@ -16,7 +16,7 @@
 
 namespace kiln {
 
-inline constexpr int kImagePluginAbiVersion = 3;
+inline constexpr int kImagePluginAbiVersion = 4;
 inline constexpr const char* kImagePluginEntryPoint = "kiln_image_plugin_v1";
 
 // Texture lookups through OpenImageIO's TextureSystem (mip-mapped, tiled, cached; thread-safe). The handles are
@@ -30,11 +30,23 @@ struct TextureFileInfo {
   float format_max = 1.0f;  // the largest value of the file's pixel type (255 for 8 bit; 1 for float), which
                             // OpenImageIO maps to 1
 };
-// Closest / Bilinear: the finest level only, derivatives unread. Trilinear: bilinear in the two MIP levels around
-// the footprint's larger axis. Anisotropic: OpenImageIO's anisotropic MIP filter (several bilinear probes along the
-// footprint's major axis, at the level of its minor axis): EWA-like.
-enum class TextureInterp { Closest, Bilinear, Trilinear, Anisotropic };
-enum class TextureWrapMode { Periodic, Clamp };
+// How an 8- or 16-bit file's values become the linear values the texture system filters: as they are (divided by
+// the format's maximum), through the sRGB curve, or v^gamma. Decoding happens before filtering and before the MIP
+// levels are built (pbrt-v4 decodes when it loads an image). Float files are always read as they are.
+// unassociated_alpha: a file with alpha keeps its colour channels as stored (OpenImageIO otherwise multiplies
+// them by alpha, as it does for PNG, TGA and TIFF files with unassociated alpha).
+enum class TextureDecodeKind { Linear, Srgb, Gamma };
+struct TextureDecode {
+  TextureDecodeKind kind = TextureDecodeKind::Linear;
+  float gamma = 2.2f;
+  bool unassociated_alpha = false;
+};
+// Closest / Bilinear: the finest level only, derivatives unread. ClosestOneLevel / BilinearOneLevel: the same within
+// the one MIP level the footprint selects. Trilinear: bilinear in the two MIP levels around the footprint's larger
+// axis. Anisotropic: OpenImageIO's anisotropic MIP filter (several bilinear probes along the footprint's major axis,
+// at the level of its minor axis): EWA-like.
+enum class TextureInterp { Closest, Bilinear, ClosestOneLevel, BilinearOneLevel, Trilinear, Anisotropic };
+enum class TextureWrapMode { Periodic, Clamp, Black };
 // One lookup at (s, t): s to the right, t down the image (t = 0 is the top row), both in [0, 1] over the image.
 struct TextureQuery {
   float s = 0, t = 0;
@@ -60,13 +72,16 @@ struct ImagePluginApi {
   // A world's texture system (released by texture_system_destroy); null on failure.
   void* (*texture_system_create)(const TextureSystemOptions& options, std::string& error) = nullptr;
   void (*texture_system_destroy)(void* system) = nullptr;
-  // Opens (and checks) one file; returns its handle, or null with error filled when it is missing or unreadable.
-  void* (*texture_open)(void* system, const std::string& path, TextureFileInfo& info, std::string& error) = nullptr;
+  // Opens (and checks) one file, decoded as `decode` says; returns its handle, or null with error filled when it is
+  // missing or unreadable. The same file opened with two decodings is two textures.
+  void* (*texture_open)(void* system, const std::string& path, const TextureDecode& decode, TextureFileInfo& info,
+                        std::string& error) = nullptr;
   // A new Perthread record for the calling thread, owned by the system (destroyed with it): ask once per thread.
   void* (*texture_thread_info)(void* system) = nullptr;
-  // RGB at the query (grey replicated); false when the lookup failed (the result is then black).
+  // The first four channels at the query (channels the file lacks are 0; the caller spreads a grey file, knowing
+  // its channel count); false when the lookup failed (the result is then black).
   bool (*texture_lookup)(void* system, void* handle, void* thread_info, const TextureQuery& query,
-                         float rgb[3]) = nullptr;
+                         float rgba[4]) = nullptr;
   void (*texture_stats)(void* system, TextureCacheStats& stats) = nullptr;
 };
 

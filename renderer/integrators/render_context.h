@@ -43,12 +43,19 @@ struct RenderContext {
   const World& world;
   const Camera& camera;
   CameraSpread pixel_spread;  // camera.pixel_spread(): texture footprints are measured in this camera's pixels
+  float pbrt_footprint_scale;  // pbrt-v4 textures' footprints narrowed for the frame's spp (footprint_scale_for_spp)
   const IntegratorSettings& settings;
   const RenderOptions& options;
   Film& film;
 
   RenderContext(const World& w, const Camera& c, const IntegratorSettings& s, const RenderOptions& o, Film& f)
-      : world(w), camera(c), pixel_spread(c.pixel_spread()), settings(s), options(o), film(f) {}
+      : world(w),
+        camera(c),
+        pixel_spread(c.pixel_spread()),
+        pbrt_footprint_scale(footprint_scale_for_spp(o.spp_total)),
+        settings(s),
+        options(o),
+        film(f) {}
 };
 
 }  // namespace kiln

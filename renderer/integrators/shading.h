@@ -11,13 +11,14 @@ namespace kiln {
 // albedo 1 would otherwise never terminate).
 inline constexpr int kMaxPathVertices = 1024;
 
-// Textures of the hit (renderer/world/hit_textures.h): a textured hit shades with `scratch`, its material with
-// the texel's k_d / k_s, and a bent shading normal; footprints are measured in the context's camera's pixels.
-// Returns true when a replace_all texture gives the surface's colour outright in `unlit`. Untextured hits (every hit
-// of an untextured scene) only test one integer.
+// The material at the hit (renderer/world/hit_textures.h): a textured hit shades with `scratch` (its material with
+// the texel's k_d / k_s, or a pbrt-v4 material built from its textures' values there) and a bent shading normal;
+// footprints are measured in the context's camera's pixels. Returns true when a replace_all texture gives the
+// surface's colour outright in `unlit`. Hits on shapes without textures or per-hit materials (every hit of such a
+// scene) only test one integer.
 inline bool apply_hit_textures(const RenderContext& ctx, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
   if (si.textures < 0) return false;
-  return apply_textures(*ctx.world.textures, ctx.pixel_spread, si, scratch, unlit);
+  return apply_textures(ctx.world, ctx.pixel_spread, ctx.pbrt_footprint_scale, si, scratch, unlit);
 }
 
 inline bool is_dielectric(const Material& m) { return std::holds_alternative<Dielectric>(m.delta); }

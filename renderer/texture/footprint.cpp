@@ -12,15 +12,19 @@ constexpr float kMaxUvDerivative = 1e8f;
 // A neighbouring ray closer than this to the tangent plane's direction (cosine) does not cross it usefully.
 constexpr float kMinCosine = 1e-6f;
 
-// The rotation that takes unit a to unit b, applied to v (Rodrigues' formula with k = a x b, c = a . b).
-Vec3f rotate_from_to(Vec3f a, Vec3f b, Vec3f v) {
-  const Vec3f k = cross(a, b);
-  const float c = dot(a, b);
-  // b opposite a (a hit behind the camera, met after a bounce): the spread, perpendicular to a, is perpendicular to
-  // b as it is; a half turn would only change its sign.
-  if (c < -1.0f + 1e-6f) return v;
-  return v * c + cross(k, v) + k * (dot(k, v) / (1.0f + c));
-}
+// The rotation that takes unit a to unit b (Rodrigues' formula with k = a x b, c = a . b), set up once for the two
+// spread vectors it turns.
+struct Rotation {
+  Vec3f k;
+  float c;
+  Rotation(Vec3f a, Vec3f b) : k(cross(a, b)), c(dot(a, b)) {}
+  Vec3f operator()(Vec3f v) const {
+    // b opposite a (a hit behind the camera, met after a bounce): the spread, perpendicular to a, is perpendicular
+    // to b as it is; a half turn would only change its sign.
+    if (c < -1.0f + 1e-6f) return v;
+    return v * c + cross(k, v) + k * (dot(k, v) / (1.0f + c));
+  }
+};
 
 // Where the ray (o, d) meets the plane through p with normal n, minus p; zero when it runs along the plane.
 Vec3f plane_offset(Vec3f o, Vec3f d, Vec3f p, Vec3f n) {
@@ -45,8 +49,9 @@ void approximate_dp_dxy(const CameraSpread& c, Vec3f p, Vec3f n, Vec3f& dpdx, Ve
   }
   const Vec3f dir = to_p / dist;
   // The neighbouring rays as they leave the camera when it looks straight at p.
-  dpdx = plane_offset(c.origin + c.pos_dx, dir + rotate_from_to(c.axis, dir, c.dir_dx), p, n);
-  dpdy = plane_offset(c.origin + c.pos_dy, dir + rotate_from_to(c.axis, dir, c.dir_dy), p, n);
+  const Rotation towards_p(c.axis, dir);
+  dpdx = plane_offset(c.origin + c.pos_dx, dir + towards_p(c.dir_dx), p, n);
+  dpdy = plane_offset(c.origin + c.pos_dy, dir + towards_p(c.dir_dy), p, n);
 }
 
 UvFootprint uv_footprint(Vec3f dpdx, Vec3f dpdy, Vec3f dpdu, Vec3f dpdv) {

@@ -5,6 +5,10 @@
 // (the spread is the camera's, not the path's), only for textures filtered over a footprint
 // (`Interpolation` trilinear / ewa).
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
 #include "core/vec.h"
 
 namespace kiln {
@@ -29,5 +33,13 @@ void approximate_dp_dxy(const CameraSpread& camera, Vec3f p, Vec3f n, Vec3f& dpd
 // du/dx ... dv/dy from dp/dx, dp/dy and the surface's dp/du, dp/dv (least squares: the projection of dp/dx on the
 // span of dp/du, dp/dv); zero when dp/du and dp/dv are parallel.
 UvFootprint uv_footprint(Vec3f dpdx, Vec3f dpdy, Vec3f dpdu, Vec3f dpdv);
+
+// pbrt-v4 scales a hit's footprint by max(1/8, 1/sqrt(spp)): with many samples per pixel the pixel filter already
+// averages the texture, so it is filtered over less than a pixel. Applied to pbrt-v4 textures only (the course
+// textures' filtering is the course's).
+inline constexpr float kMinPbrtFootprintScale = 0.125f;
+inline float footprint_scale_for_spp(uint32_t samples_per_pixel) {
+  return std::max(kMinPbrtFootprintScale, 1.0f / std::sqrt(float(std::max(samples_per_pixel, 1u))));
+}
 
 }  // namespace kiln

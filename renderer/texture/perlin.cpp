@@ -25,6 +25,11 @@ float weight(float t) {
 }  // namespace
 
 float course_perlin(Vec3f p) {
+  // The lattice's gradients repeat every kGradients cells along each axis: fmod (exact) moves p by whole periods,
+  // which leaves every offset from a lattice point bit for bit as it was, and keeps far points (fractal noise's fine
+  // octaves) within the range of the lattice's integers.
+  if (!is_finite(p)) return 0.0f;
+  for (int a = 0; a < 3; ++a) p[a] = std::fmod(p[a], float(kGradients));
   const long long x0 = (long long)std::floor(p.x), y0 = (long long)std::floor(p.y), z0 = (long long)std::floor(p.z);
   float n = 0.0f;
   for (int dx = 0; dx <= 1; ++dx)

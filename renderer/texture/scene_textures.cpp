@@ -1,12 +1,13 @@
 #include "renderer/texture/scene_textures.h"
 
-#include <atomic>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
 
 #include "core/error.h"
 #include "core/frame.h"
+#include "renderer/texture/bump_map.h"
 #include "renderer/texture/checkerboard.h"
 #include "renderer/texture/perlin.h"
 #include "scenes/material_mapping.h"
@@ -14,14 +15,6 @@
 namespace kiln {
 namespace {
 
-std::atomic<uint64_t> g_next_generation{1};
-
-// The calling thread's OpenImageIO Perthread record of the system it last used.
-struct ThreadTextureInfo {
-  uint64_t generation = 0;
-  void* info = nullptr;
-};
-thread_local ThreadTextureInfo t_info;
 
 Rgb degamma(Rgb c) { return pow(c, kDegammaExponent); }
 
@@ -35,13 +28,6 @@ void tangent_frame(Vec3f n, Vec3f dpdu, Vec3f dpdv, Vec3f& t, Vec3f& b) {
   } else {
     coordinate_system(n, t, b);
   }
-}
-
-// Keeps a perturbed normal on the geometric side of n (a bump cannot turn the surface over).
-Vec3f unit_on_side(Vec3f v, Vec3f n) {
-  if (!(length_squared(v) > 0.0f)) return n;
-  v = normalize(v);
-  return dot(v, n) > 0.0f ? v : n;
 }
 
 TextureInterp interp_of(TextureFilter f) {
@@ -62,7 +48,7 @@ bool filtered(const CompiledTexture& t) {
 }  // namespace
 
 SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions& options)
-    : generation_(g_next_generation.fetch_add(1)) {
+    : images_(options), graph_(scene.pbrt_textures, scene.source_path, images_) {
   textures_.reserve(scene.textures.size());
   for (const TextureDesc& d : scene.textures) {
     CompiledTexture t;
@@ -79,18 +65,9 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
     t.white = d.white;
     t.normalizer = d.normalizer.value_or(1.0f);
     if (d.source == TextureSource::Image) {
-      if (!owner_.system) {
-        owner_.api = &image_plugin(scene.source_path);
-        std::string error;
-        owner_.system = owner_.api->texture_system_create(options, error);
-        if (!owner_.system) throw Error(scene.source_path, d.name, error);
-        stats_.texture_system_built = true;
-        stats_.cache_limit_mb = options.max_memory_mb;
-      }
-      TextureFileInfo info;
-      std::string error;
-      t.handle = owner_.api->texture_open(owner_.system, d.image_path, info, error);
-      if (!t.handle) throw Error(scene.source_path, d.name, "image '" + d.image_path + "': " + error);
+      const OpenedImage image = images_.open(d.image_path, TextureDecode{}, scene.source_path, d.name);
+      const TextureFileInfo& info = image.info;
+      t.handle = image.handle;
       t.query.interp = interp_of(d.filter);
       t.query.wrap = d.wrap == TextureWrap::Clamp ? TextureWrapMode::Clamp : TextureWrapMode::Periodic;
       t.value_scale = info.format_max / d.normalizer.value_or(info.format_max);
@@ -107,12 +84,52 @@ SceneTextures::SceneTextures(const SceneDesc& scene, const TextureSystemOptions&
   stats_.textures = textures_.size();
   if (scene.background_texture) background_ = *scene.background_texture;
   material_of_desc_.assign(scene.materials.size() * 4, -1);
+  pbrt_material_of_desc_.assign(scene.materials.size(), -1);
 }
 
 SceneTextures::~SceneTextures() = default;
 
-SceneTextures::SystemOwner::~SystemOwner() {
-  if (system) api->texture_system_destroy(system);
+namespace {
+
+// The materials a hit on `material` may shade with: itself, or a mix's components (through nested mixes; the loader
+// and the world reject mixes that contain each other, `depth` stops a cycle that reaches here anyway).
+template <typename F>
+void for_each_shading_material(const SceneDesc& scene, int material, F&& f, int depth = 0) {
+  if (material < 0 || size_t(material) >= scene.materials.size() || depth > int(scene.materials.size())) return;
+  const MaterialDesc& m = scene.materials[size_t(material)];
+  if (!m.mix) {
+    f(material, m);
+    return;
+  }
+  for (int c : m.mix->materials) for_each_shading_material(scene, c, f, depth + 1);
+}
+
+bool pbrt_per_hit(const MaterialDesc& m) { return m.pbrt && needs_per_hit_evaluation(*m.pbrt); }
+
+}  // namespace
+
+bool material_needs_textures(const SceneDesc& scene, int material) {
+  bool needs = false;
+  for_each_shading_material(scene, material, [&](int, const MaterialDesc& m) { needs = needs || pbrt_per_hit(m); });
+  return needs;
+}
+
+int SceneTextures::use_pbrt_material(const SceneDesc& scene, int material) {
+  int& slot = pbrt_material_of_desc_[size_t(material)];
+  if (slot < 0) {
+    pbrt_materials_.push_back(make_textured_material(*scene.materials[size_t(material)].pbrt, graph_));
+    slot = int(pbrt_materials_.size()) - 1;
+  }
+  return slot;
+}
+
+TextureBuildStats SceneTextures::stats() const {
+  TextureBuildStats s = stats_;
+  s.texture_system_built = images_.built();
+  s.cache_limit_mb = images_.built() ? images_.cache_limit_mb() : 0.0f;
+  s.pbrt = graph_.stats();
+  s.textured_materials = pbrt_materials_.size();
+  return s;
 }
 
 int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures, int material,
@@ -132,6 +149,13 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
       case DecalMode::ReplaceBackground: break;
     }
     if (t.bump) b.bump = i, any = true;
+  }
+  if (material_needs_textures(scene, material)) {
+    for_each_shading_material(scene, material, [&](int c, const MaterialDesc& m) {
+      if (pbrt_per_hit(m)) b.pbrt_material = use_pbrt_material(scene, c);
+    });
+    b.pbrt_mix = bool(scene.materials[size_t(material)].mix);
+    any = true;
   }
   if (!any) return -1;
   for (const int i : {b.kd, b.ks, b.all})
@@ -164,7 +188,6 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
 }
 
 Rgb SceneTextures::image_value(const CompiledTexture& t, Vec2f uv, const UvFootprint& fp) const {
-  if (t_info.generation != generation_) t_info = {generation_, owner_.api->texture_thread_info(owner_.system)};
   TextureQuery q = t.query;
   q.s = uv.x;
   q.t = uv.y;
@@ -174,8 +197,8 @@ Rgb SceneTextures::image_value(const CompiledTexture& t, Vec2f uv, const UvFootp
     q.dsdy = fp.dudy;
     q.dtdy = fp.dvdy;
   }
-  float rgb[3];
-  owner_.api->texture_lookup(owner_.system, t.handle, t_info.info, q, rgb);
+  float rgb[4];
+  images_.lookup(t.handle, q, rgb);
   if (t.grey) rgb[1] = rgb[2] = rgb[0];
   return Rgb(rgb[0], rgb[1], rgb[2]) * t.value_scale;
 }
@@ -227,12 +250,6 @@ Vec3f SceneTextures::mapped_normal(const CompiledTexture& t, Vec3f n, Vec2f uv, 
   Vec3f tu, tv;
   tangent_frame(n, dpdu, cross(n, dpdu), tu, tv);
   return unit_on_side(tu * (2.0f * c.r - 1.0f) + tv * (2.0f * c.g - 1.0f) + n * (2.0f * c.b - 1.0f), n);
-}
-
-TextureCacheStats SceneTextures::cache_stats() const {
-  TextureCacheStats s;
-  if (owner_.system) owner_.api->texture_stats(owner_.system, s);
-  return s;
 }
 
 }  // namespace kiln

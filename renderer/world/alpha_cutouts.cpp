@@ -2,31 +2,43 @@
 
 #include <algorithm>
 
+#include "renderer/accel/surface_point.h"
 #include "renderer/texture/scene_textures.h"
 #include "renderer/world/world.h"
 
 namespace kiln {
 namespace {
 
-// The surface (u, v) of a triangle hit: its vertices' uv, or pbrt's default parametrisation.
-Vec2f triangle_uv(const World& w, const ShapeAlpha& a, uint32_t shape, uint32_t prim, Vec2f b) {
+// Where a triangle hit is, as a texture sees it: the world-space point and unit normal, and the surface (u, v) from
+// the vertices' uv or pbrt's default parametrisation.
+TextureEvalContext triangle_hit(const World& w, const ShapeAlpha& a, uint32_t shape, uint32_t prim, Vec2f b) {
   const float b0 = 1.0f - b.x - b.y;
-  if (a.uvs < 0) return Vec2f(0.0f, 0.0f) * b0 + Vec2f(1.0f, 0.0f) * b.x + Vec2f(1.0f, 1.0f) * b.y;
   const Shape& s = w.geometry.shapes[shape];
   const TriangleMesh& m = s.kind == ShapeKind::Mesh ? w.geometry.meshes[s.index]
                                                     : w.geometry.prototypes[w.geometry.instances[s.index].prototype];
   const uint32_t* idx = &m.idx[3 * size_t(prim)];
-  const std::vector<Vec2f>& uv = w.uvs[size_t(a.uvs)];
-  return uv[idx[0]] * b0 + uv[idx[1]] * b.x + uv[idx[2]] * b.y;
+  TextureEvalContext c;
+  c.p = m.p[idx[0]] * b0 + m.p[idx[1]] * b.x + m.p[idx[2]] * b.y;
+  if (s.kind == ShapeKind::Instance) c.p = w.geometry.instances[s.index].to_world.point(c.p);
+  c.n = normalize(triangle_world_normal(w.geometry, shape, prim));
+  if (a.uvs < 0) {
+    c.uv = Vec2f(0.0f, 0.0f) * b0 + Vec2f(1.0f, 0.0f) * b.x + Vec2f(1.0f, 1.0f) * b.y;
+  } else {
+    const std::vector<Vec2f>& uv = w.uvs[size_t(a.uvs)];
+    c.uv = uv[idx[0]] * b0 + uv[idx[1]] * b.x + uv[idx[2]] * b.y;
+  }
+  return c;
 }
 
-float decoded(float v, const AlphaImageDesc& image) {
-  switch (image.encoding) {
-    case AlphaEncoding::Linear: return v;
-    case AlphaEncoding::Srgb: return srgb_to_linear(std::clamp(v, 0.0f, 1.0f));
-    case AlphaEncoding::Gamma: return std::pow(std::max(v, 0.0f), image.gamma);
-  }
-  return v;
+// The same for a quadric hit, whose hit coordinates are its (u, v).
+TextureEvalContext quadric_hit(const QuadricShape& q, Vec2f uv) {
+  TextureEvalContext c;
+  const Vec3f p = q.quadric.point_at(uv);
+  c.p = q.to_world.point(p);
+  const Vec3f n = normalize(q.to_world.normal(q.quadric.normal(p)));
+  c.n = q.flip ? -n : n;
+  c.uv = uv;
+  return c;
 }
 
 }  // namespace
@@ -37,20 +49,17 @@ void AlphaCutouts::add(uint32_t shape, ShapeAlpha alpha) {
   alpha_.push_back(std::move(alpha));
 }
 
-float alpha_texture_value(const World& w, int texture, const AlphaImageDesc& image, Vec2f uv) {
-  const Vec2f st(image.su * uv.x + image.du, 1.0f - (image.sv * uv.y + image.dv));
-  const float v = decoded(w.textures->value(texture, st, Vec3f(0.0f)).average(), image) * image.scale;
-  return image.invert ? std::max(0.0f, 1.0f - v) : v;
-}
-
+// Textures read the finest detail (no footprint: the test asks about one point of one ray); a texture's value
+// outside [0, 1] means fully open or fully opaque, as pbrt-v4's alpha test reads it.
 float AlphaCutouts::opacity_at(const World& w, uint32_t shape, uint32_t prim, Vec2f hit_uv) const {
   const int i = shape < index_of_shape_.size() ? index_of_shape_[shape] : -1;
   if (i < 0) return 1.0f;
   const ShapeAlpha& a = alpha_[size_t(i)];
   if (a.desc.texture < 0) return a.desc.value;
-  const bool triangles = w.geometry.shapes[shape].kind != ShapeKind::Quadric;
-  const Vec2f uv = triangles ? triangle_uv(w, a, shape, prim, hit_uv) : hit_uv;
-  return alpha_texture_value(w, a.desc.texture, a.desc.image, uv);
+  const Shape& s = w.geometry.shapes[shape];
+  const TextureEvalContext c = s.kind == ShapeKind::Quadric ? quadric_hit(w.geometry.quadrics[s.index], hit_uv)
+                                                            : triangle_hit(w, a, shape, prim, hit_uv);
+  return w.textures->graph().eval_float(a.desc.texture, c);
 }
 
 float AlphaCutouts::opacity(const void* world, uint32_t shape, uint32_t prim, Vec2f hit_uv) {

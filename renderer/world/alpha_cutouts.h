@@ -2,11 +2,9 @@
 // texture at the hit's (u, v). The accelerators reach opacity() through WorldGeometry::alpha and apply pbrt-v4's
 // stochastic rule (renderer/accel/alpha.h); camera, bounce and shadow rays all go through it there.
 //
-// Hit coordinates to (u, v): a triangle's barycentrics interpolate its vertices' uv (pbrt's (0,0), (1,0), (1,1)
-// when the mesh has none); a quadric's are its (u, v) already. A float image texture is read as pbrt-v4 reads one:
-// s = su u + du, t = sv v + dv, the image's row 0 at t = 1 (pbrt flips t), the average of its channels (pbrt's
-// bilinear float lookup of an RGB image), decoded by its encoding, times scale, then inverted when asked.
-// Texture lookups go through the scene's SceneTextures (renderer/texture/scene_textures.h).
+// A texture sees the hit as a material's textures do (renderer/texture/texture_graph.h): the world-space point and
+// normal, and (u, v) from a triangle's barycentrics and its vertices' uv (pbrt's (0,0), (1,0), (1,1) when the mesh has
+// none) or a quadric's own (u, v); every class and mapping, at its finest detail.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -37,8 +35,5 @@ class AlphaCutouts {
   std::vector<int> index_of_shape_;  // shape -> index into alpha_, -1 without one
   std::vector<ShapeAlpha> alpha_;
 };
-
-// The opacity of a float image texture `texture` (SceneDesc::textures) at the surface's (u, v), read as above.
-float alpha_texture_value(const World& w, int texture, const AlphaImageDesc& image, Vec2f uv);
 
 }  // namespace kiln

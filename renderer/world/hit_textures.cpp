@@ -16,6 +16,22 @@ void set_reflectances(Material& m, Rgb kd, Rgb ks, float lambert_scale) {
   }
 }
 
+// The hit as pbrt-v4 textures see it; the footprint only when a texture reads it.
+TextureEvalContext pbrt_eval_context(const CameraSpread& camera, float footprint_scale, const SurfaceInteraction& si,
+                                     bool footprint) {
+  TextureEvalContext c;
+  c.p = si.p;
+  c.n = si.ng;
+  c.uv = si.uv;
+  if (footprint) {
+    approximate_dp_dxy(camera, si.p, si.ng, c.dpdx, c.dpdy);
+    c.dpdx = c.dpdx * footprint_scale;
+    c.dpdy = c.dpdy * footprint_scale;
+    c.fp = uv_footprint(c.dpdx, c.dpdy, si.dpdu, si.dpdv);
+  }
+  return c;
+}
+
 }  // namespace
 
 UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si) {
@@ -24,9 +40,20 @@ UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& 
   return uv_footprint(dpdx, dpdy, si.dpdu, si.dpdv);
 }
 
-bool apply_textures(const SceneTextures& tex, const CameraSpread& camera, SurfaceInteraction& si, Material& scratch,
-                    Rgb& unlit) {
+bool apply_textures(const World& w, const CameraSpread& camera, float pbrt_footprint_scale, SurfaceInteraction& si,
+                    Material& scratch, Rgb& unlit) {
+  const SceneTextures& tex = *w.textures;
   const TextureBinding& b = tex.bindings()[size_t(si.textures)];
+  if (b.pbrt_material >= 0) {
+    // A mix's hit shades with the component it chose, which may or may not be resolved per hit.
+    const int pm = b.pbrt_mix ? tex.pbrt_material_of(size_t(si.material - w.materials.data())) : b.pbrt_material;
+    if (pm < 0) return false;
+    const TexturedPbrtMaterial& m = tex.pbrt_materials()[size_t(pm)];
+    const bool smooth = w.shape_data[si.shape].normals >= 0;
+    const TextureEvalContext c = pbrt_eval_context(camera, pbrt_footprint_scale, si, m.needs_footprint);
+    resolve_textured_material(tex.graph(), m, c, smooth, si, scratch);
+    return false;
+  }
   const Vec3f p = b.to_object.point(si.p);  // where procedural textures are evaluated
   // Only bindings with a filtered colour texture pay for a footprint (bump and normal maps read the finest level).
   const UvFootprint fp = b.footprint ? hit_footprint(camera, si) : UvFootprint{};

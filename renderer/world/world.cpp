@@ -98,19 +98,6 @@ QuadricDesc quadric_of_sphere(const SphereDesc& s) {
   return q;
 }
 
-// Records a shape's alpha cut-out (shape: its index, about to be added). An emitter keeps its surface opaque: its
-// light samples would otherwise fall into the holes.
-void add_alpha(World& w, uint32_t shape, const ShapeAlphaDesc& alpha, int uvs, const std::string& name, bool emits) {
-  if (!alpha.cuts()) return;
-  if (emits) {
-    w.warnings.push_back(name + ": \"alpha\" on an emitting shape is not rendered; the emitter is opaque");
-    return;
-  }
-  if (!w.alpha) w.alpha = std::make_unique<AlphaCutouts>();
-  w.alpha->add(shape, ShapeAlpha{alpha, uvs});
-  w.features |= kFeatureAlpha;
-}
-
 AreaLight make_area_light(const AreaLightDesc& d) {
   if (d.edges) return AreaLight::parallelogram(d.position, (*d.edges)[0], (*d.edges)[1], d.radiance);
   return AreaLight::square(d.position, d.normal, d.size, d.radiance);
@@ -166,30 +153,42 @@ class WorldBuilder {
     w_.materials.reserve(scene_.materials.size());
     for (const MaterialDesc& m : scene_.materials) {
       w_.materials.push_back(build_material(m, scene_));
-      const Material& built = w_.materials.back();
       if (m.mix) {  // shades as its components, which are materials of their own
         ++w_.stats.compiled_materials["mix"];
         continue;
       }
-      ++w_.stats.compiled_materials[built.describe()];
-      if (built.surface_flags() & kLobeGlossy) w_.features |= kFeatureGlossy;
-      if (built.has_delta()) w_.features |= kFeatureDelta;
-      if (built.oriented()) w_.features |= kFeatureDielectric;
+      ++w_.stats.compiled_materials[w_.materials.back().describe()];
+      note_features(w_.materials.back());
+      if (m.pbrt && needs_per_hit_evaluation(*m.pbrt))  // what its textures may make of it at a hit
+        for (const Material& v : per_hit_variants(*m.pbrt)) note_features(v);
     }
     w_.stats.materials = w_.materials.size();
     w_.mixes = build_material_mixes(scene_);
     if (!w_.mixes.empty()) w_.features |= kFeatureMix;
   }
 
-  // Only for scenes that have textures; their OpenImageIO TextureSystem only when one is an image.
-  void add_textures() {
-    if (scene_.textures.empty()) return;
-    w_.textures = std::make_unique<SceneTextures>(scene_, options_.texture_system);
-    w_.features |= kFeatureTextures;
+  void note_features(const Material& built) {
+    if (built.surface_flags() & kLobeGlossy) w_.features |= kFeatureGlossy;
+    if (built.has_delta()) w_.features |= kFeatureDelta;
+    if (built.oriented()) w_.features |= kFeatureDielectric;
   }
 
-  int bind_textures(const std::vector<int>& textures, int material, const Transform& to_world) {
-    return w_.textures && !textures.empty() ? w_.textures->bind(scene_, textures, material, to_world) : -1;
+  // Textures: only for scenes with course textures or a rendered shape whose pbrt material is resolved per hit;
+  // their OpenImageIO TextureSystem only when an image is used.
+  SceneTextures& textures() {
+    if (!w_.textures) {
+      w_.textures = std::make_unique<SceneTextures>(scene_, options_.texture_system);
+      w_.features |= kFeatureTextures;
+    }
+    return *w_.textures;
+  }
+  void add_textures() {
+    if (!scene_.textures.empty()) textures();
+  }
+
+  int bind_textures(const std::vector<int>& textures_of_shape, int material, const Transform& to_world) {
+    if (textures_of_shape.empty() && !material_needs_textures(scene_, material)) return -1;
+    return textures().bind(scene_, textures_of_shape, material, to_world);
   }
 
   // Surfaces whose material only marks a boundary (pbrt's "interface") change no ray: without participating media
@@ -269,7 +268,7 @@ class WorldBuilder {
     w_.stats.triangles += tm.triangle_count();
     ++w_.stats.meshes;
     WorldGeometry& g = w_.geometry;
-    add_alpha(w_, uint32_t(g.shapes.size()), m.alpha, sd.uvs, m.name, sd.light >= 0);
+    add_alpha(uint32_t(g.shapes.size()), m.alpha, sd.uvs, m.name, sd.light >= 0);
     g.shapes.push_back(Shape{ShapeKind::Mesh, uint32_t(g.meshes.size()), shape_motion(w_, m.name, m.motion, sd.light)});
     g.meshes.push_back(std::move(tm));
     w_.shape_data.push_back(sd);
@@ -286,7 +285,7 @@ class WorldBuilder {
           cut_spheres_.push_back(quadric_of_sphere(s));
           continue;
         }
-        add_alpha(w_, 0, s.alpha, -1, s.name, true);  // warns: the emitter stays opaque
+        add_alpha(0, s.alpha, -1, s.name, true);  // warns: the emitter stays opaque
       }
       ShapeData sd;
       sd.material = s.material;
@@ -322,7 +321,7 @@ class WorldBuilder {
         if (q.emission && !q.emission->is_black())
           sd.light = add_shape_light(QuadricLight(q.quadric, q.to_world, q.flip, *q.emission, q.two_sided_emission),
                                      w_.stats.quadric_lights, kFeatureQuadricLights);
-        add_alpha(w_, uint32_t(g.shapes.size()), q.alpha, -1, q.name, sd.light >= 0);
+        add_alpha(uint32_t(g.shapes.size()), q.alpha, -1, q.name, sd.light >= 0);
         g.shapes.push_back(
             Shape{ShapeKind::Quadric, uint32_t(g.quadrics.size()), shape_motion(w_, q.name, q.motion, sd.light)});
         g.quadrics.push_back(QuadricShape{q.quadric, q.to_world, q.flip});
@@ -367,7 +366,7 @@ class WorldBuilder {
         }
         sd.uvs = pu;
       }
-      add_alpha(w_, uint32_t(g.shapes.size()), base.alpha, sd.uvs, inst.name, false);
+      add_alpha(uint32_t(g.shapes.size()), base.alpha, sd.uvs, inst.name, false);
       g.shapes.push_back(
           Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w_, inst.name, inst.motion, -1)});
       g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
@@ -376,6 +375,20 @@ class WorldBuilder {
       w_.features |= kFeatureInstances;
     }
     w_.stats.instances = g.instances.size();
+  }
+
+  // Records a shape's alpha cut-out (shape: its index, about to be added) and compiles its texture. An emitter keeps
+  // its surface opaque: its light samples would otherwise fall into the holes.
+  void add_alpha(uint32_t shape, const ShapeAlphaDesc& alpha, int uvs, const std::string& name, bool emits) {
+    if (!alpha.cuts()) return;
+    if (emits) {
+      w_.warnings.push_back(name + ": \"alpha\" on an emitting shape is not rendered; the emitter is opaque");
+      return;
+    }
+    if (alpha.texture >= 0) textures().use_pbrt_texture(alpha.texture);
+    if (!w_.alpha) w_.alpha = std::make_unique<AlphaCutouts>();
+    w_.alpha->add(shape, ShapeAlpha{alpha, uvs});
+    w_.features |= kFeatureAlpha;
   }
 
   // The accelerators' alpha test, only when some shape has a cut-out (the others pay nothing).

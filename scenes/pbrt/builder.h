@@ -4,8 +4,8 @@
 // (scenes/pbrt/lights.cpp), each written into the SceneDesc. Shapes and cameras are made by scenes/pbrt/shapes.h and
 // scenes/pbrt/camera.h. Everything a builder cannot render is reported through PbrtDiagnostics.
 #pragma once
-#include <functional>
 #include <array>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -24,6 +24,9 @@ inline constexpr float kPbrtDefaultDielectricEta = 1.5f;
 inline constexpr float kPbrtDefaultSpotConeAngle = 30.0f, kPbrtDefaultSpotConeDelta = 5.0f;
 inline constexpr float kPbrtDefaultCoatThickness = 0.01f;
 inline constexpr int kPbrtDefaultCoatMaxDepth = 10;
+// Noise textures sum this many octaves at most (each is a Perlin evaluation at a frequency 1.99x the last, so more
+// would only cost time).
+inline constexpr int kPbrtMaxNoiseOctaves = 32;
 inline constexpr float kPbrtDefaultDiffuseTransmission = 0.25f;  // both "reflectance" and "transmittance"
 inline constexpr float kPbrtDefaultMixAmount = 0.5f;
 
@@ -33,21 +36,15 @@ struct PbrtAreaLight {
   bool two_sided = false;
 };
 
-// A float "imagemap" texture as shapes' "alpha" reads it (scenes/pbrt/alpha.cpp): the image as a SceneDesc texture
-// (added when a shape first uses it) and the pbrt lookup around it.
-struct PbrtFloatImage {
-  TextureDesc texture;
-  AlphaImageDesc lookup;
-  int scene_texture = -1;  // index into SceneDesc::textures once added
-};
-
-// A named texture (Texture directive).
-struct PbrtTextureDef {
+// A named texture (Texture directive): float and spectrum textures have separate names, as in pbrt-v4.
+struct PbrtTextureKey {
+  std::string name;
   bool is_float = false;
-  std::string cls;
-  std::optional<float> value;  // constant float texture
-  std::optional<Rgb> rgb;      // constant spectrum texture
-  std::optional<PbrtFloatImage> float_image;  // float imagemap
+  auto operator<=>(const PbrtTextureKey&) const = default;
+};
+struct PbrtTextureDef {
+  int index = -1;   // into SceneDesc::pbrt_textures; -1: a class Kiln does not render (warned), e.g. ptex
+  std::string cls;  // the class as written, for messages
 };
 
 // A file named in the scene, resolved as Include resolves it (a missing file throws, naming the file and line).
@@ -73,11 +70,12 @@ class PbrtBuilder {
   // contain each other, at the mix's line).
   void resolve_mixes();
 
-  // Textures (scenes/pbrt/textures.cpp).
-  void make_texture(const std::string& name, const std::string& type, const std::string& cls, const PbrtParams& ps);
+  // Textures (scenes/pbrt/textures.cpp). to_world: the transform in effect at the directive.
+  void make_texture(const std::string& name, const std::string& type, const std::string& cls, const PbrtParams& ps,
+                    const Transform& to_world);
 
-  // A shape's "alpha" (scenes/pbrt/alpha.cpp): a float, or a float texture (constant or imagemap); other texture
-  // classes are warned and the shape kept opaque. A missing texture or a spectrum texture throws.
+  // A shape's "alpha" (scenes/pbrt/alpha.cpp): a float, or any float texture (SceneDesc::pbrt_textures). A missing
+  // texture or a spectrum texture throws.
   ShapeAlphaDesc shape_alpha(const PbrtParams& ps);
 
   // Lights (scenes/pbrt/lights.cpp). light_to_world: the transform in effect at the directive.
@@ -86,22 +84,27 @@ class PbrtBuilder {
   std::optional<PbrtAreaLight> make_area_light(const std::string& type, const PbrtParams& ps);
 
  private:
-  // Material parameters that may name a texture: constant textures are read, others warned (the default is used).
-  float float_param(const PbrtParams& ps, const std::string& name, float def);
-  Rgb spectrum_param(const PbrtParams& ps, const std::string& name, SpectrumUse use, Rgb def);
-  const PbrtTextureDef& texture_def(const PbrtParams& ps, const std::string& name) const;
-  void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex,
-                            const PbrtTextureDef& t);
+  // Parameters that may name a texture (materials and texture operands): a constant, a constant texture's value, or
+  // the texture. A texture of a class Kiln does not render is warned and the default used.
+  TexturedFloat float_param(const PbrtParams& ps, const std::string& name, float def);
+  TexturedRgb spectrum_param(const PbrtParams& ps, const std::string& name, SpectrumUse use, Rgb def);
+  // The texture `tex` that parameter `param` names, of the kind the parameter needs; -1 when its class is not
+  // rendered (warned). A missing texture, or one of the other kind, throws naming the file and line.
+  int texture_ref(const PbrtParams& ps, const std::string& param, const std::string& tex, bool is_float);
+  void read_mapping(const PbrtParams& ps, const Transform& to_world, TextureMappingDesc& m);
+  void read_image_texture(const PbrtParams& ps, ImageTextureDesc& image);
+  int add_image_texture(const std::string& name, const ImageTextureDesc& image, bool is_float);
+  void add_external_file(const std::string& path);  // once, however many textures read it
+  void read_operands(const PbrtParams& ps, PbrtTextureDesc& t);
   // "<prefix>roughness", "<prefix>uroughness", "<prefix>vroughness".
-  void read_roughness(const PbrtParams& ps, const std::string& prefix, float& u, float& v);
-  float interface_eta(const PbrtParams& ps, const std::string& name);
+  void read_roughness(const PbrtParams& ps, const std::string& prefix, TexturedFloat& u, TexturedFloat& v);
+  TexturedFloat interface_eta(const PbrtParams& ps, const std::string& name);
   void read_conductor(const PbrtParams& ps, const std::string& prefix, PbrtMaterialDesc& pm);
-  RgbComplexIor conductor_ior_param(const PbrtParams& ps, const std::string& eta_name, const std::string& k_name);
   void read_layers(const PbrtParams& ps, PbrtMaterialDesc& pm);
   void read_mix(const PbrtParams& ps, MaterialDesc& d);
   std::vector<int> mix_cycle_from(int material) const;
   std::string material_name(int material) const;
-  PbrtFloatImage read_float_image(const std::string& name, const PbrtParams& ps);
+  void read_bump(const PbrtParams& ps, PbrtMaterialDesc& pm);
 
   Rgb light_spectrum(const PbrtParams& ps, const std::string& name);
   void infinite_light(const PbrtParams& ps, float scale, const Transform& light_to_world);
@@ -121,7 +124,7 @@ class PbrtBuilder {
     std::string where() const { return "line " + std::to_string(line) + " (" + context + ")"; }
   };
   std::vector<PendingMix> pending_mixes_;
-  std::map<std::string, PbrtTextureDef> textures_;
+  std::map<PbrtTextureKey, PbrtTextureDef> textures_;
   int default_material_ = -1;
 };
 

@@ -7,42 +7,16 @@
 
 namespace kiln {
 
-// A float parameter that may name a texture: constant textures are read, others warned (the default is used).
-float PbrtBuilder::float_param(const PbrtParams& ps, const std::string& name, float def) {
-  if (const auto tex = ps.find_texture(name)) {
-    const PbrtTextureDef& t = texture_def(ps, *tex);
-    if (t.is_float && t.value) return *t.value;
-    texture_not_rendered(ps, name, *tex, t);
-    return def;
-  }
-  return ps.get_float(name, def);
+void PbrtBuilder::read_roughness(const PbrtParams& ps, const std::string& prefix, TexturedFloat& u, TexturedFloat& v) {
+  const TexturedFloat r = float_param(ps, prefix + "roughness", 0.0f);
+  u = ps.has(prefix + "uroughness") ? float_param(ps, prefix + "uroughness", r.value) : r;
+  v = ps.has(prefix + "vroughness") ? float_param(ps, prefix + "vroughness", r.value) : r;
+  if (u.value < 0.0f || v.value < 0.0f) ps.fail(ps.line(), in_quotes(prefix + "roughness") + " must not be negative");
 }
 
-Rgb PbrtBuilder::spectrum_param(const PbrtParams& ps, const std::string& name, SpectrumUse use, Rgb def) {
-  if (const auto tex = ps.find_texture(name)) {
-    const PbrtTextureDef& t = texture_def(ps, *tex);
-    if (!t.is_float && t.rgb) {
-      if (use == SpectrumUse::Albedo && t.rgb->max_component() > 1.0f) {
-        diag_.warn(ps, "texture " + in_quotes(*tex) + " used as " + in_quotes(name) + " exceeds 1; clamped");
-        return Rgb(std::min(t.rgb->r, 1.0f), std::min(t.rgb->g, 1.0f), std::min(t.rgb->b, 1.0f));
-      }
-      return *t.rgb;
-    }
-    texture_not_rendered(ps, name, *tex, t);
-    return def;
-  }
-  return ps.find_spectrum(name, use).value_or(def);
-}
-
-
-void PbrtBuilder::read_roughness(const PbrtParams& ps, const std::string& prefix, float& u, float& v) {
-  const float r = float_param(ps, prefix + "roughness", 0.0f);
-  u = ps.has(prefix + "uroughness") ? float_param(ps, prefix + "uroughness", r) : r;
-  v = ps.has(prefix + "vroughness") ? float_param(ps, prefix + "vroughness", r) : r;
-  if (u < 0.0f || v < 0.0f) ps.fail(ps.line(), in_quotes(prefix + "roughness") + " must not be negative");
-}
-
-float PbrtBuilder::interface_eta(const PbrtParams& ps, const std::string& name) {
+// pbrt-v4's eta is a float or a spectrum; Kiln also takes a float texture.
+TexturedFloat PbrtBuilder::interface_eta(const PbrtParams& ps, const std::string& name) {
+  if (ps.find_texture(name)) return float_param(ps, name, kPbrtDefaultDielectricEta);
   bool spectral = false;
   const float eta = ps.find_float_or_spectrum(name, &spectral).value_or(kPbrtDefaultDielectricEta);
   if (!(eta > 0.0f)) ps.fail(ps.line(), in_quotes(name) + " must be positive");
@@ -50,38 +24,55 @@ float PbrtBuilder::interface_eta(const PbrtParams& ps, const std::string& name) 
     diag_.warn(ps, "a spectral " + in_quotes(name) + " is rendered without dispersion (eta = " + std::to_string(eta) + ")");
     diag_.unsupported("dispersion (spectral eta)");
   }
-  return eta;
+  return {eta, -1};
+}
+
+// Bump mapping by a float texture ("displacement") or a tangent-space normal map image ("normalmap"); pbrt-v4 uses
+// the normal map when both are given.
+void PbrtBuilder::read_bump(const PbrtParams& ps, PbrtMaterialDesc& pm) {
+  if (ps.has("displacement")) {
+    const TexturedFloat d = float_param(ps, "displacement", 0.0f);
+    pm.displacement = d.texture;  // a constant displacement moves the surface without bending its normal
+  }
+  if (const auto file = ps.find_string("normalmap")) {
+    ImageTextureDesc image;
+    image.path = resolve_(*file, ps);
+    image.encoding = ImageEncoding::Linear;  // pbrt-v4 reads normal maps without decoding
+    std::string name = Error::format(ps.file(), ps.location(ps.line()), "normal map " + in_quotes(*file));
+    pm.normal_map = add_image_texture(name, image, false);
+  }
 }
 
 // A conductor's "eta" and "k" (pbrt's default: copper), or its "reflectance"; prefix "conductor." for the base of a
-// coatedconductor. pbrt-v4 rejects "reflectance" together with "eta" or "k".
+// coatedconductor. pbrt-v4 rejects "reflectance" together with "eta" or "k". eta and k given as spectra (or left at
+// pbrt's default, copper's spectra) are reduced together (scenes/pbrt/spectrum.h); an RGB or textured one makes each
+// reduced on its own.
 void PbrtBuilder::read_conductor(const PbrtParams& ps, const std::string& prefix, PbrtMaterialDesc& pm) {
-  const bool has_ior = ps.has(prefix + "eta") || ps.has(prefix + "k");
+  const std::string eta_name = prefix + "eta", k_name = prefix + "k";
   if (ps.has("reflectance")) {
-    if (has_ior)
-      ps.fail(ps.line(), "gives both \"reflectance\" and " + in_quotes(prefix + "eta") + " / " + in_quotes(prefix + "k") +
+    if (ps.has(eta_name) || ps.has(k_name))
+      ps.fail(ps.line(), "gives both \"reflectance\" and " + in_quotes(eta_name) + " / " + in_quotes(k_name) +
                              " (pbrt-v4 takes one or the other)");
+    pm.conductor_by_reflectance = true;
     pm.conductor_reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(1.0f));
     return;
   }
-  const RgbComplexIor ior = conductor_ior_param(ps, prefix + "eta", prefix + "k");
-  pm.conductor_eta = ior.eta;
-  pm.conductor_k = ior.k;
-}
-
-// eta and k given as spectra (or left at pbrt's default, copper's spectra) are reduced together
-// (scenes/pbrt/spectrum.h); an RGB or textured one makes each reduced on its own.
-RgbComplexIor PbrtBuilder::conductor_ior_param(const PbrtParams& ps, const std::string& eta_name,
-                                               const std::string& k_name) {
   const auto spectral = [&](const std::string& name, std::string_view copper) {
     return ps.has(name) ? ps.find_piecewise_spectrum(name) : named_spectrum(copper);
   };
   const std::optional<PiecewiseSpectrum> eta = spectral(eta_name, "metal-Cu-eta"), k = spectral(k_name, "metal-Cu-k");
-  if (eta && k) return conductor_rgb_ior(*eta, *k);
+  if (eta && k) {
+    const RgbComplexIor ior = conductor_rgb_ior(*eta, *k);
+    pm.conductor_eta = ior.eta;
+    pm.conductor_k = ior.k;
+    return;
+  }
   const auto reduced = [&](const std::optional<PiecewiseSpectrum>& s, const std::string& name) {
-    return s ? spectrum_rgb(*s, SpectrumUse::Unbounded) : spectrum_param(ps, name, SpectrumUse::Unbounded, Rgb(1.0f));
+    return s ? TexturedRgb(spectrum_rgb(*s, SpectrumUse::Unbounded))
+             : spectrum_param(ps, name, SpectrumUse::Unbounded, Rgb(1.0f));
   };
-  return {reduced(eta, eta_name), reduced(k, k_name)};
+  pm.conductor_eta = reduced(eta, eta_name);
+  pm.conductor_k = reduced(k, k_name);
 }
 
 // The random walk's parameters of coateddiffuse and coatedconductor.
@@ -92,8 +83,8 @@ void PbrtBuilder::read_layers(const PbrtParams& ps, PbrtMaterialDesc& pm) {
   pm.max_depth = ps.get_int("maxdepth", kPbrtDefaultCoatMaxDepth);
   pm.n_samples = ps.get_int("nsamples", 1);
   pm.remap_roughness = ps.get_bool("remaproughness", true);
-  if (pm.thickness < 0.0f) ps.fail(ps.line(), "\"thickness\" must not be negative");
-  if (pm.g <= -1.0f || pm.g >= 1.0f) ps.fail(ps.line(), "\"g\" must lie in (-1, 1)");
+  if (pm.thickness.value < 0.0f) ps.fail(ps.line(), "\"thickness\" must not be negative");
+  if (pm.g.value <= -1.0f || pm.g.value >= 1.0f) ps.fail(ps.line(), "\"g\" must lie in (-1, 1)");
   if (pm.max_depth < 1 || pm.n_samples < 1) ps.fail(ps.line(), "\"maxdepth\" and \"nsamples\" must be at least 1");
 }
 
@@ -102,7 +93,13 @@ void PbrtBuilder::read_mix(const PbrtParams& ps, MaterialDesc& d) {
   if (names.size() != 2)
     ps.fail(ps.line(), "\"materials\" must name two materials, got " + std::to_string(names.size()));
   MaterialMixDesc mix;
-  mix.amount = float_param(ps, "amount", kPbrtDefaultMixAmount);
+  const TexturedFloat amount = float_param(ps, "amount", kPbrtDefaultMixAmount);
+  mix.amount = amount.value;
+  if (amount.textured()) {
+    // The choice is made before any material is evaluated (renderer/world/material_mix.h), with no texture lookup.
+    diag_.warn(ps, "a textured \"amount\" is not rendered; the mix uses " + std::to_string(amount.value));
+    diag_.unsupported("textured mix \"amount\"");
+  }
   d.mix = mix;
   pending_mixes_.push_back({int(scene_.materials.size()), {names[0], names[1]}, ps.file(), ps.context(), ps.line()});
 }
@@ -111,16 +108,7 @@ int PbrtBuilder::make_material(const std::string& type, const PbrtParams& ps) {
   MaterialDesc d;
   d.id = int(scene_.materials.size()) + 1;
   PbrtMaterialDesc pm;
-  if (ps.has("displacement")) {
-    ps.find_texture("displacement");
-    diag_.warn(ps, "displacement is not rendered");
-    diag_.unsupported("displacement (pbrt material \"displacement\")");
-  }
-  if (ps.has("normalmap")) {
-    ps.find_string("normalmap");
-    diag_.warn(ps, "normal maps are not rendered");
-    diag_.unsupported("normal maps");
-  }
+  read_bump(ps, pm);
   if (type == "diffuse") {
     pm.kind = PbrtMaterialKind::Diffuse;
     pm.reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(kPbrtDefaultReflectance));
@@ -165,7 +153,8 @@ int PbrtBuilder::make_material(const std::string& type, const PbrtParams& ps) {
     diag_.unsupported("pbrt material " + in_quotes(type));
     for (const PbrtParam& p : ps.params()) p.used = true;
     pm.kind = PbrtMaterialKind::Diffuse;
-    pm.reflectance = Rgb(kPbrtDefaultReflectance);
+    pm = PbrtMaterialDesc{};
+    pm.reflectance = {Rgb(kPbrtDefaultReflectance), -1};
   }
   if (!d.mix) d.pbrt = pm;
   diag_.report_unused(ps);

@@ -251,12 +251,21 @@ std::optional<std::string> PbrtParams::find_string(std::string_view name) const 
   return p ? std::optional<std::string>(p->strings[0]) : std::nullopt;
 }
 
-std::optional<Vec3f> PbrtParams::find_point3(std::string_view name) const {
-  const PbrtParam* p = find(name, {PbrtType::Point3}, "point3");
+std::optional<Vec3f> PbrtParams::find_triple(std::string_view name, PbrtType type, const char* one) const {
+  const PbrtParam* p = find(name, {type}, pbrt_type_name(type));
   if (!p) return std::nullopt;
   if (p->floats.size() != 3)
-    fail(p->line, "parameter " + in_quotes(name) + " takes one point (3 values), got " + std::to_string(p->count()));
+    fail(p->line, "parameter " + in_quotes(name) + " takes one " + one + " (3 values), got " +
+                      std::to_string(p->count()));
   return Vec3f(p->floats[0], p->floats[1], p->floats[2]);
+}
+
+std::optional<Vec3f> PbrtParams::find_point3(std::string_view name) const {
+  return find_triple(name, PbrtType::Point3, "point");
+}
+
+std::optional<Vec3f> PbrtParams::find_vector3(std::string_view name) const {
+  return find_triple(name, PbrtType::Vector3, "vector");
 }
 
 std::vector<float> PbrtParams::get_floats(std::string_view name) const {

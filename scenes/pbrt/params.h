@@ -80,6 +80,7 @@ class PbrtParams {
     return find_string(name).value_or(def);
   }
   std::optional<Vec3f> find_point3(std::string_view name) const;
+  std::optional<Vec3f> find_vector3(std::string_view name) const;
   // Arrays (empty when absent).
   std::vector<float> get_floats(std::string_view name) const;
   std::vector<int64_t> get_ints(std::string_view name) const;
@@ -112,6 +113,7 @@ class PbrtParams {
   const PbrtParam* find_one(std::string_view name, std::initializer_list<PbrtType> accepted,
                             const char* expected) const;
   std::vector<float> numbers(std::string_view name, PbrtType type, size_t arity) const;
+  std::optional<Vec3f> find_triple(std::string_view name, PbrtType type, const char* one) const;
   std::optional<PiecewiseSpectrum> piecewise_spectrum(const PbrtParam& p) const;
   std::string spectrum_file(const PbrtParam& p) const;
 

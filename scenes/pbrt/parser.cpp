@@ -355,7 +355,7 @@ class PbrtParser {
       const std::string cls = read_string(cur, line, d);
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name), gs_.defaults.texture);
       require_world(line, d);
-      return builder_.make_texture(name, type, cls, ps);
+      return builder_.make_texture(name, type, cls, ps, gs_.ctm[0]);
     }
     if (d == "LightSource") {
       const std::string type = read_string(cur, line, d);

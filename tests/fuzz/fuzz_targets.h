@@ -204,13 +204,16 @@ inline void check_scene(const SceneDesc& s) {
   for (const auto& l : s.spot_lights)
     require(finite(l.position) && finite(l.direction) && finite(l.intensity), "a spot light is non-finite");
   for (const auto& l : s.infinite_lights) require(finite(l.radiance), "an infinite light is non-finite");
+  const auto texture_ok = [&](int t) { return t >= -1 && t < int(s.pbrt_textures.size()); };
+  for (size_t i = 0; i < s.pbrt_textures.size(); ++i)  // a texture reads only textures defined before it: no cycles
+    for (const TexturedRgb& o : s.pbrt_textures[i].operands)
+      require(o.texture < int(i) && finite(o.value), "a pbrt texture reads a later texture or a non-finite value");
   for (const auto& m : s.materials)
-    if (m.pbrt)
-      require(finite(m.pbrt->reflectance) && finite(m.pbrt->conductor_eta) && finite(m.pbrt->conductor_k) &&
-                  finite(m.pbrt->eta) && m.pbrt->eta > 0 && finite(m.pbrt->uroughness) && finite(m.pbrt->vroughness) &&
-                  finite(m.pbrt->albedo) && finite(m.pbrt->g) && finite(m.pbrt->thickness) &&
-                  (!m.pbrt->conductor_reflectance || finite(*m.pbrt->conductor_reflectance)),
-              "a pbrt material has a non-finite or invalid parameter");
+    if (m.pbrt) {
+      bool ok = m.pbrt->eta.value > 0 && texture_ok(m.pbrt->displacement) && texture_ok(m.pbrt->normal_map);
+      for_each_texturable(*m.pbrt, [&](const auto& p) { ok = ok && finite(p.value) && texture_ok(p.texture); });
+      require(ok, "a pbrt material has a non-finite or invalid parameter");
+    }
   for (const auto& c : s.cameras)
     if (c.filter)
       require(finite(c.filter->radius) && c.filter->radius > 0 && finite(c.filter->sigma) && c.filter->sigma > 0,

@@ -14,10 +14,22 @@ namespace kiln::test {
 
 inline constexpr int kReferenceBlock = 16;
 
-// Renders camera 0 of `scene_path` at spp with `seed` and compares it with the EXR `reference_path`; prints the
-// statistics under `name`.
-inline BlockStats render_against_reference(const std::string& name, const std::string& scene_path,
-                                           const std::string& reference_path, uint32_t spp, uint64_t seed) {
+// A rectangle of pixels, [x0, x1) x [y0, y1); empty (the default) for the whole image.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+};
+
+inline Image cropped(const Image& img, const PixelRect& r) {
+  if (r.empty()) return img;
+  Image out(r.x1 - r.x0, r.y1 - r.y0);
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) out.at(x - r.x0, y - r.y0) = img.at(x, y);
+  return out;
+}
+
+// Camera 0 of `scene_path` rendered at spp with `seed`.
+inline Image render_like_kiln(const std::string& scene_path, uint32_t spp, uint64_t seed) {
   const SceneDesc scene = load_scene(scene_path);
   const auto world = build_scene_world(scene);
   const CameraDesc& cd = scene.cameras.at(0);
@@ -28,11 +40,24 @@ inline BlockStats render_against_reference(const std::string& name, const std::s
   ro.spp_total = spp;
   ro.filter = pixel_filter_for(cd, std::nullopt);
   render_samples(*world, cam, scene_settings(cd, scene, world->features), ro, 0, spp, film);
-  const Image reference = read_exr(reference_path).rgb;
-  const BlockStats st = block_luminance_stats(film.mean(), reference, kReferenceBlock);
-  std::cout << name << " vs pbrt-v4, " << spp << " spp, " << kReferenceBlock << "-px blocks: median " << st.median_rel
-            << ", p95 " << st.p95_rel << ", mean ratio " << st.mean_ratio << " over " << st.blocks << " blocks\n";
+  return film.mean();
+}
+
+// Block statistics of `image` against `reference` over `crop` of both (the whole images when empty), printed under
+// `name`.
+inline BlockStats blocks_against_reference(const std::string& name, const Image& image, const Image& reference,
+                                           const PixelRect& crop = {}) {
+  const BlockStats st = block_luminance_stats(cropped(image, crop), cropped(reference, crop), kReferenceBlock);
+  std::cout << name << " vs pbrt-v4, " << kReferenceBlock << "-px blocks: median " << st.median_rel << ", p95 "
+            << st.p95_rel << ", mean ratio " << st.mean_ratio << " over " << st.blocks << " blocks\n";
   return st;
+}
+
+// Renders camera 0 of `scene_path` at spp with `seed` and compares it with the EXR `reference_path`.
+inline BlockStats render_against_reference(const std::string& name, const std::string& scene_path,
+                                           const std::string& reference_path, uint32_t spp, uint64_t seed) {
+  return blocks_against_reference(name + ", " + std::to_string(spp) + " spp", render_like_kiln(scene_path, spp, seed),
+                                  read_exr(reference_path).rgb);
 }
 
 }  // namespace kiln::test

@@ -79,6 +79,7 @@ TEST(PbrtMaterialMapping, ConductorRoughnessIsRemapped) {
 
 TEST(PbrtMaterialMapping, ConductorReflectanceFormHasThatNormalReflectance) {
   PbrtMaterialDesc d = of_kind(PbrtMaterialKind::Conductor);
+  d.conductor_by_reflectance = true;
   d.conductor_reflectance = Rgb(0.9f, 0.5f, 0.1f);
   d.uroughness = d.vroughness = 0.1f;
   const Material m = build_material(pbrt_material(d), pbrt_scene());
@@ -86,7 +87,7 @@ TEST(PbrtMaterialMapping, ConductorReflectanceFormHasThatNormalReflectance) {
   const RgbComplexIor& ior = std::get<RoughConductor>(m.surface).ior;
   EXPECT_EQ(ior.eta, Rgb(1.0f));
   const Rgb r0 = fresnel_conductor(1.0f, ior);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(r0[c], (*d.conductor_reflectance)[c], 1e-5f);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(r0[c], d.conductor_reflectance.value[c], 1e-5f);
   // r = 1 would need k = infinity: pbrt clamps to 0.9999.
   d.conductor_reflectance = Rgb(1.0f);
   const Material one = build_material(pbrt_material(d), pbrt_scene());
@@ -177,7 +178,8 @@ TEST(PbrtMaterialMapping, BadValuesNameFileMaterialAndType) {
   add(K::Conductor, [](auto& d) { d.vroughness = INFINITY; }, "vroughness");
   add(K::Conductor, [](auto& d) { d.conductor_k = Rgb(1, -1, 1); }, "k must be finite and non-negative");
   add(K::Conductor, [](auto& d) { d.conductor_eta = Rgb(NAN); }, "eta must be finite");
-  add(K::Conductor, [](auto& d) { d.conductor_reflectance = Rgb(-0.5f); }, "reflectance must be");
+  add(K::Conductor, [](auto& d) { d.conductor_by_reflectance = true, d.conductor_reflectance = Rgb(-0.5f); },
+      "reflectance must be");
   add(K::Dielectric, [](auto& d) { d.eta = 0.0f; }, "pbrt dielectric material: eta must be a positive number");
   add(K::Dielectric, [](auto& d) { d.eta = -1.5f; }, "eta must be a positive number");
   add(K::CoatedDiffuse, [](auto& d) { d.thickness = -0.01f; }, "pbrt coateddiffuse material: thickness");
@@ -187,6 +189,13 @@ TEST(PbrtMaterialMapping, BadValuesNameFileMaterialAndType) {
   add(K::CoatedDiffuse, [](auto& d) { d.max_depth = -1; }, "maxdepth must be in [0, 10000]");
   add(K::CoatedDiffuse, [](auto& d) { d.albedo = Rgb(0.5f, -1.0f, 0.5f); }, "albedo must be finite");
   add(K::CoatedDiffuse, [](auto& d) { d.eta = NAN; }, "eta must be a positive number");
+  add(K::CoatedConductor, [](auto& d) { d.conductor_uroughness = -0.1f; },
+      "pbrt coatedconductor material: conductor.uroughness");
+  add(K::CoatedConductor, [](auto& d) { d.eta = 0.0f; }, "interface.eta must be a positive number");
+  add(K::CoatedConductor, [](auto& d) { d.g = -1.0f; }, "g must lie strictly between -1 and 1");
+  add(K::DiffuseTransmission, [](auto& d) { d.scale = -1.0f; }, "pbrt diffusetransmission material: scale");
+  add(K::DiffuseTransmission, [](auto& d) { d.transmittance = Rgb(0.5f, -1.0f, 0.5f); }, "transmittance must be");
+  add(K::ThinDielectric, [](auto& d) { d.eta = 0.0f; }, "pbrt thindielectric material: eta must be a positive");
   for (const Case& c : cases) {
     const std::string e = error_of(c.desc);
     EXPECT_NE(e.find("scene.pbrt"), std::string::npos) << e;

@@ -1,9 +1,13 @@
 // Kiln's OpenImageIO plugin (renderer/image_io/image_plugin.h explains why it is a separately loaded module). Built as
 // kiln_oiio_plugin.so; the only Kiln code that links OpenImageIO.
+#include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -111,7 +115,93 @@ std::string first_line(const std::string& e) {
   return line;
 }
 
-void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std::string& error) {
+// ---- decoded files ----------------------------------------------------------------------------------------------
+
+// The texture system filters, and builds MIP levels from, what a file's ImageInput hands it. To filter linear values
+// of an sRGB- or gamma-encoded 8- or 16-bit file, the cache knows it by a name that carries the decoding, and reads
+// it through DecodedInput: the file's own reader (asked to leave alpha unassociated), its values turned to linear
+// floats scanline by scanline.
+constexpr char kDecodeSeparator = '\x1f';  // cannot occur in a path a scene names
+
+std::string decoded_name(const std::string& path, const TextureDecode& d) {
+  std::string how = "linear";
+  if (d.kind == TextureDecodeKind::Srgb) how = "srgb";
+  if (d.kind == TextureDecodeKind::Gamma) how = std::to_string(d.gamma);
+  return path + kDecodeSeparator + how;
+}
+
+float srgb_to_linear(float v) {
+  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+class DecodedInput final : public OIIO::ImageInput {
+ public:
+  const char* format_name() const override { return "kiln-decoded"; }
+  bool open(const std::string& name, OIIO::ImageSpec& newspec) override {
+    const size_t sep = name.rfind(kDecodeSeparator);
+    if (sep == std::string::npos) return false;
+    const std::string how = name.substr(sep + 1);
+    srgb_ = how == "srgb";
+    gamma_ = srgb_ || how == "linear" ? 1.0f : std::strtof(how.c_str(), nullptr);
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    in_ = OIIO::ImageInput::open(name.substr(0, sep), &config);
+    if (!in_) {
+      errorfmt("{}", OIIO::geterror());
+      return false;
+    }
+    m_spec = in_->spec();
+    m_spec.set_format(OIIO::TypeDesc::FLOAT);
+    m_spec.tile_width = m_spec.tile_height = m_spec.tile_depth = 0;  // served as scanlines
+    m_spec.erase_attribute("oiio:SHA-1");  // not the file's pixels: must not be shared with the undecoded file
+    newspec = m_spec;
+    return true;
+  }
+  bool close() override {
+    in_.reset();
+    return true;
+  }
+  bool read_native_scanline(int subimage, int miplevel, int y, int z, void* data) override {
+    if (subimage != 0 || miplevel != 0 || !in_) return false;
+    float* out = static_cast<float*>(data);
+    if (!in_->read_scanlines(0, 0, y, y + 1, z, 0, m_spec.nchannels, OIIO::TypeDesc::FLOAT, out)) {
+      errorfmt("{}", in_->geterror());
+      return false;
+    }
+    const size_t n = size_t(m_spec.width) * size_t(m_spec.nchannels);
+    if (srgb_)
+      for (size_t i = 0; i < n; ++i) out[i] = srgb_to_linear(out[i]);
+    else if (gamma_ != 1.0f)
+      for (size_t i = 0; i < n; ++i) out[i] = std::pow(out[i], gamma_);
+    return true;
+  }
+
+ private:
+  std::unique_ptr<OIIO::ImageInput> in_;
+  bool srgb_ = false;
+  float gamma_ = 1.0f;
+};
+
+OIIO::ImageInput* create_decoded_input() { return new DecodedInput; }
+
+bool integer_format(OIIO::TypeDesc t) { return max_of(t) > 1.0f; }
+
+OIIO::TextureSystem::TextureHandle* texture_handle(System* sys, const std::string& name, OIIO::ImageSpec& spec,
+                                                   std::string& error) {
+  OIIO::TextureSystem* ts = sys->ts;
+  const OIIO::ustring u(name);
+  sys->files.push_back(u);
+  OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(u);
+  if (!h || !ts->get_imagespec(h, nullptr, 0, spec) || !ts->good(h)) {
+    error = first_line(ts->geterror());
+    if (error.empty()) error = "not an image OpenImageIO can read";
+    return nullptr;
+  }
+  return h;
+}
+
+void* texture_open(void* s, const std::string& path, const TextureDecode& decode, TextureFileInfo& info,
+                   std::string& error) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     error = "no such file";
@@ -119,14 +209,16 @@ void* texture_open(void* s, const std::string& path, TextureFileInfo& info, std:
   }
   auto* sys = static_cast<System*>(s);
   OIIO::TextureSystem* ts = sys->ts;
-  const OIIO::ustring name(path);
-  sys->files.push_back(name);
-  OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(name);
   OIIO::ImageSpec spec;
-  if (!h || !ts->get_imagespec(h, nullptr, 0, spec) || !ts->good(h)) {
-    error = first_line(ts->geterror());
-    if (error.empty()) error = "not an image OpenImageIO can read";
-    return nullptr;
+  OIIO::TextureSystem::TextureHandle* h = texture_handle(sys, path, spec, error);
+  if (!h) return nullptr;
+  const bool decoded = decode.kind != TextureDecodeKind::Linear && integer_format(spec.format);
+  const bool raw_alpha = decode.unassociated_alpha && spec.alpha_channel >= 0;
+  if (decoded || raw_alpha) {
+    const std::string name = decoded_name(path, decode);
+    ts->imagecache()->add_file(OIIO::ustring(name), &create_decoded_input);
+    h = texture_handle(sys, name, spec, error);
+    if (!h) return nullptr;
   }
   info.width = spec.width;
   info.height = spec.height;
@@ -161,6 +253,8 @@ void set_modes(TextureInterp interp, OIIO::TextureOpt& opt) {
     switch (interp) {
       case TextureInterp::Closest: return {Opt::MipModeNoMIP, Opt::InterpClosest};
       case TextureInterp::Bilinear: return {Opt::MipModeNoMIP, Opt::InterpBilinear};
+      case TextureInterp::ClosestOneLevel: return {Opt::MipModeOneLevel, Opt::InterpClosest};
+      case TextureInterp::BilinearOneLevel: return {Opt::MipModeOneLevel, Opt::InterpBilinear};
       case TextureInterp::Trilinear: return {Opt::MipModeTrilinear, Opt::InterpBilinear};
       case TextureInterp::Anisotropic: return {Opt::MipModeAniso, Opt::InterpBilinear};
     }
@@ -170,19 +264,25 @@ void set_modes(TextureInterp interp, OIIO::TextureOpt& opt) {
   opt.interpmode = m.interp;
 }
 
-bool texture_lookup(void* s, void* handle, void* thread_info, const TextureQuery& q, float rgb[3]) {
+OIIO::TextureOpt::Wrap wrap_of(TextureWrapMode w) {
+  switch (w) {
+    case TextureWrapMode::Periodic: return OIIO::TextureOpt::WrapPeriodic;
+    case TextureWrapMode::Clamp: return OIIO::TextureOpt::WrapClamp;
+    case TextureWrapMode::Black: return OIIO::TextureOpt::WrapBlack;
+  }
+  return OIIO::TextureOpt::WrapPeriodic;
+}
+
+bool texture_lookup(void* s, void* handle, void* thread_info, const TextureQuery& q, float rgba[4]) {
   OIIO::TextureOpt opt;
   set_modes(q.interp, opt);
-  opt.swrap = opt.twrap =
-      q.wrap == TextureWrapMode::Clamp ? OIIO::TextureOpt::WrapClamp : OIIO::TextureOpt::WrapPeriodic;
-  float out[3] = {0, 0, 0};
+  opt.swrap = opt.twrap = wrap_of(q.wrap);
+  float out[4] = {0, 0, 0, 0};
   // Channels the file lacks come back as 0 (a grey file is spread to RGB by the caller, which knows its channels).
   const bool ok = system_of(s)->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(handle),
                                         static_cast<OIIO::TextureSystem::Perthread*>(thread_info), opt, q.s, q.t,
-                                        q.dsdx, q.dtdx, q.dsdy, q.dtdy, 3, out);
-  rgb[0] = out[0];
-  rgb[1] = out[1];
-  rgb[2] = out[2];
+                                        q.dsdx, q.dtdx, q.dsdy, q.dtdy, 4, out);
+  for (int c = 0; c < 4; ++c) rgba[c] = out[c];
   return ok;
 }
 

@@ -167,7 +167,7 @@ TEST_F(CliBadInput, PbrtAlphaNamingASpectrumTexture) {
   expect_bad_input(write_file(dir_, "alpha_spectrum.pbrt",
                               pbrt_scene("Texture \"c\" \"spectrum\" \"constant\" \"rgb value\" [1 1 1]\n"
                                          "Shape \"disk\" \"texture alpha\" \"c\"\n")),
-                   "line 7 (Shape \"disk\"): \"alpha\" names texture \"c\", a spectrum texture");
+                   "line 7 (Shape \"disk\"): \"alpha\" needs a float texture, but \"c\" is a spectrum texture");
 }
 
 TEST_F(CliBadInput, PbrtNegativeRadius) {
@@ -178,6 +178,20 @@ TEST_F(CliBadInput, PbrtNegativeRadius) {
 TEST_F(CliBadInput, PbrtWrongParameterType) {
   expect_bad_input(bad_pbrt("wrong_parameter_type.pbrt"),
                    "line 2 (Camera \"perspective\"): parameter \"fov\" is declared \"string\"");
+}
+
+TEST_F(CliBadInput, PbrtMissingTextureFile) {
+  expect_bad_input(bad_pbrt("missing_texture_file.pbrt"),
+                   "line 3 (Texture \"grid\"): cannot find \"textures/not_there.png\"");
+}
+
+TEST_F(CliBadInput, PbrtUnknownTextureClass) {
+  expect_bad_input(bad_pbrt("unknown_texture_class.pbrt"), "line 3 (Texture \"cloth\"): unknown texture class \"plaid\"");
+}
+
+// A file that exists but is no image fails when the world opens it, still naming the Texture directive's line.
+TEST_F(CliBadInput, PbrtUnreadableTexture) {
+  expect_bad_input(bad_pbrt("unreadable_texture.pbrt"), "line 3 (Texture \"grid\"): imagemap: image");
 }
 
 // A scene whose sphere wears texture `ref` of a Textures block with one image texture `image`.

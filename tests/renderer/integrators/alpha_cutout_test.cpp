@@ -76,17 +76,23 @@ std::string half_open_png(bool columns) {
   return path;
 }
 
-// The occluder just under the light, its alpha an image half open; nearest-texel lookups keep the boundary sharp.
-SceneDesc half_open_occluder(bool columns) {
+// The occluder just under the light, its alpha the float texture t.
+SceneDesc occluder_with_alpha(const PbrtTextureDesc& t) {
   SceneDesc s = lit_floor({kLightX * kShrink, kOccluderHeight, kLightZ * kShrink}, 1.01f);
-  TextureDesc t;
-  t.name = "half-open alpha";
-  t.image_path = half_open_png(columns);
-  t.filter = TextureFilter::Nearest;
-  s.textures.push_back(t);
+  s.pbrt_textures.push_back(t);
   s.meshes[2].alpha.texture = 0;
-  s.meshes[2].alpha.image.encoding = AlphaEncoding::Linear;
   return s;
+}
+
+// Its alpha an image half open; nearest-texel lookups keep the boundary sharp.
+SceneDesc half_open_occluder(bool columns) {
+  PbrtTextureDesc t;
+  t.name = "half-open alpha";
+  t.cls = TextureClass::ImageMap;
+  t.is_float = true;
+  t.image.path = half_open_png(columns);
+  t.image.filter = ImageFilter::Point;
+  return occluder_with_alpha(t);
 }
 
 void expect_floor_radiance(const SceneDesc& s, double irradiance, const char* what) {
@@ -119,6 +125,24 @@ TEST(AlphaCutout, AHalfOpenImageLetsExactlyTheLightBehindItsOpenHalfThrough) {
   // (pbrt reads images with t = 1 - v: the top rows are v > 1/2).
   expect_floor_radiance(half_open_occluder(true), rect_irradiance(kX0, kLightX, kZ0, kZ1), "left half open");
   expect_floor_radiance(half_open_occluder(false), rect_irradiance(kX0, kX1, kLightZ, kZ1), "top half open");
+}
+
+// The same occluders with a procedural alpha: a 2-D checkerboard two cells across u (or v), open (0) on the cell that
+// the image leaves open and opaque (1) on the other. Alpha reads any float texture of the scene's texture graph.
+SceneDesc half_open_checker_occluder(bool columns) {
+  PbrtTextureDesc t;
+  t.name = "half-open checkerboard";
+  t.cls = TextureClass::Checkerboard;
+  t.is_float = true;
+  (columns ? t.mapping.su : t.mapping.sv) = 2.0f;  // cell 0 below 1/2, cell 1 above
+  t.operands[kTexOperandTex1] = Rgb(columns ? 0.0f : 1.0f);
+  t.operands[kTexOperandTex2] = Rgb(columns ? 1.0f : 0.0f);
+  return occluder_with_alpha(t);
+}
+
+TEST(AlphaCutout, AProceduralTextureCutsAsTheImageDoes) {
+  expect_floor_radiance(half_open_checker_occluder(true), rect_irradiance(kX0, kLightX, kZ0, kZ1), "left half open");
+  expect_floor_radiance(half_open_checker_occluder(false), rect_irradiance(kX0, kX1, kLightZ, kZ1), "top half open");
 }
 
 TEST(AlphaCutout, CameraRaysSeeTheLightThroughTheOpenHalf) {

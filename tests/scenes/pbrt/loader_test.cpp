@@ -393,7 +393,7 @@ TEST_F(PbrtAllDirectives, Materials) {
 
   const PbrtMaterialDesc& coated = pbrt_of(s.meshes[0].material);
   EXPECT_EQ(coated.kind, PbrtMaterialKind::CoatedDiffuse);
-  expect_near(coated.reflectance, {0.1f, 0.2f, 0.3f});
+  expect_near(coated.reflectance.value, {0.1f, 0.2f, 0.3f});
   EXPECT_EQ(coated.uroughness, 0.05f);
   EXPECT_EQ(coated.vroughness, 0.05f);
   EXPECT_EQ(coated.thickness, 0.02f);
@@ -407,14 +407,15 @@ TEST_F(PbrtAllDirectives, Materials) {
 
   const PbrtMaterialDesc& gold = pbrt_of(s.meshes[1].material);
   EXPECT_EQ(gold.kind, PbrtMaterialKind::Conductor);
+  ASSERT_FALSE(gold.conductor_eta.textured() || gold.conductor_k.textured());
   const RgbComplexIor au = *named_conductor_ior("Au");  // eta and k reduced together
-  EXPECT_EQ(gold.conductor_eta, au.eta);
-  EXPECT_EQ(gold.conductor_k, au.k);
-  expect_gold(gold.conductor_eta, gold.conductor_k);
+  EXPECT_EQ(gold.conductor_eta.value, au.eta);
+  EXPECT_EQ(gold.conductor_k.value, au.k);
+  expect_gold(gold.conductor_eta.value, gold.conductor_k.value);
   EXPECT_EQ(gold.uroughness, 0.1f);
   EXPECT_EQ(gold.vroughness, 0.2f);
   EXPECT_FALSE(gold.remap_roughness);
-  EXPECT_FALSE(gold.conductor_reflectance);
+  EXPECT_FALSE(gold.conductor_by_reflectance);
 
   const PbrtMaterialDesc& glass = pbrt_of(s.meshes[2].material);
   EXPECT_EQ(glass.kind, PbrtMaterialKind::Dielectric);
@@ -592,7 +593,7 @@ TEST(PbrtWarnings, EveryUnsupportedFeatureIsNamedWithFileAndLine) {
       {f + "line 7 (Integrator \"bdpt\")", "\"regularize\" is ignored"},
       {f + "line 8 (Accelerator)", "ignored"},
       {f + "line 10 (MakeNamedMedium)", "participating media"},
-      {f + "line 11 (Texture \"checks\")", "\"checkerboard\" is not rendered"},
+      {f + "line 11 (Texture \"checks\")", "ptex textures are not rendered"},
       {f + "line 12 (Material \"diffuse\")", "texture \"checks\""},
       {f + "line 13 (Shape \"trianglemesh\")", "\"float bogus\" is not used"},
       {f + "line 14 (Material \"hair\")", "not supported"},
@@ -609,7 +610,7 @@ TEST(PbrtWarnings, EveryUnsupportedFeatureIsNamedWithFileAndLine) {
   for (const auto& [where, what] : expected)
     EXPECT_TRUE(has_warning(s, where, what)) << where << " " << what << "\n" << all_warnings(s);
   EXPECT_EQ(s.warnings.size(), std::size(expected)) << all_warnings(s);
-  for (const char* feature : {"textures", "participating media", "pbrt shape \"curve\"", "motion blur"}) {
+  for (const char* feature : {"ptex textures", "participating media", "pbrt shape \"curve\"", "motion blur"}) {
     bool found = false;
     for (const std::string& u : s.unsupported) found |= u.find(feature) != std::string::npos;
     EXPECT_TRUE(found) << feature;

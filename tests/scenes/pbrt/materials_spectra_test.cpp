@@ -65,7 +65,7 @@ TEST(PbrtMaterials, CoatedConductorReadsEveryParameter) {
   EXPECT_EQ(d.max_depth, 7);
   EXPECT_EQ(d.n_samples, 3);
   EXPECT_FALSE(d.remap_roughness);
-  EXPECT_FALSE(d.conductor_reflectance);
+  EXPECT_FALSE(d.conductor_by_reflectance);
 }
 
 TEST(PbrtMaterials, CoatedConductorDefaultsAndReflectanceMode) {
@@ -80,7 +80,8 @@ TEST(PbrtMaterials, CoatedConductorDefaultsAndReflectanceMode) {
   EXPECT_EQ(def.max_depth, 10);
   const PbrtMaterialDesc r = only_pbrt(
       parse_pbrt(kHead + "Material \"coatedconductor\" \"rgb reflectance\" [0.9 0.5 0.2]\n", "inline.pbrt"));
-  EXPECT_EQ(*r.conductor_reflectance, Rgb(0.9f, 0.5f, 0.2f));
+  EXPECT_TRUE(r.conductor_by_reflectance);
+  EXPECT_EQ(r.conductor_reflectance.value, Rgb(0.9f, 0.5f, 0.2f));
   const std::string both = error_of(kHead + "Material \"coatedconductor\" \"rgb reflectance\" [0.9 0.5 0.2] "
                                             "\"spectrum conductor.eta\" \"metal-Ag-eta\"\n");
   EXPECT_NE(both.find("inline.pbrt: line 5"), std::string::npos) << both;
@@ -258,7 +259,7 @@ TEST(PbrtSpectra, SpdFilesAreReadRelativeToTheSceneFile) {
   std::ofstream(dir + "/flat.spd") << "# a flat spectrum\n300 0.4\n900 0.4\n";
   std::ofstream(dir + "/scene.pbrt") << kHead << "Material \"diffuse\" \"spectrum reflectance\" \"flat.spd\"\n";
   const SceneDesc s = load_pbrt(dir + "/scene.pbrt");
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(only_pbrt(s).reflectance[c], 0.4f, 1e-5f);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(only_pbrt(s).reflectance.value[c], 0.4f, 1e-5f);
 
   const std::string missing = error_of(kHead + "Material \"diffuse\" \"spectrum reflectance\" \"nope.spd\"\n",
                                        dir + "/other.pbrt");

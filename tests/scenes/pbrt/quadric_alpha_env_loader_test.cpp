@@ -9,15 +9,12 @@
 
 #include "core/error.h"
 #include "scenes/pbrt/loader.h"
+#include "pbrt_test_util.h"
 
 namespace kiln {
 namespace {
 
 namespace fs = std::filesystem;
-
-const std::string kHead =
-    "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
-    "\"integer yresolution\" 8\nWorldBegin\n";  // the world starts on line 5
 
 // A folder holding scene.pbrt's neighbours: an environment map and an alpha image (the loader only resolves them).
 std::string folder() {
@@ -28,16 +25,8 @@ std::string folder() {
   return d.string();
 }
 
-SceneDesc parse(const std::string& world) { return parse_pbrt(kHead + world, folder() + "/scene.pbrt"); }
-
-std::string error_of(const std::string& world) {
-  try {
-    parse(world);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+SceneDesc parse(const std::string& world) { return parse_world(world, folder()); }
+std::string error_of(const std::string& world) { return world_error(world, folder()); }
 
 bool has_warning(const SceneDesc& s, const std::string& what) {
   for (const std::string& w : s.warnings)
@@ -148,17 +137,18 @@ TEST(PbrtAlpha, ConstantsConstantTexturesAndFloatImages) {
   const ShapeAlphaDesc& leaf = s.quadrics[0].alpha;
   ASSERT_GE(leaf.texture, 0);
   EXPECT_EQ(s.meshes[1].alpha.texture, leaf.texture) << "one scene texture per pbrt texture";
-  EXPECT_EQ(leaf.image.encoding, AlphaEncoding::Srgb) << "pbrt's default for PNG files";
-  EXPECT_EQ(leaf.image.su, 2.0f);
-  EXPECT_EQ(leaf.image.dv, 0.25f);
-  EXPECT_TRUE(leaf.image.invert);
-  const TextureDesc& t = s.textures.at(size_t(leaf.texture));
-  EXPECT_EQ(fs::path(t.image_path).filename(), "leaf.png");
-  EXPECT_TRUE(fs::exists(t.image_path));
-  const ShapeAlphaDesc& lin = s.quadrics[1].alpha;
-  EXPECT_EQ(lin.image.encoding, AlphaEncoding::Linear);
-  EXPECT_EQ(s.textures.at(size_t(lin.texture)).filter, TextureFilter::Nearest);
-  EXPECT_EQ(std::count(s.external_files.begin(), s.external_files.end(), t.image_path), 2) << "both textures";
+  const PbrtTextureDesc& t = s.pbrt_textures.at(size_t(leaf.texture));
+  EXPECT_TRUE(t.is_float);
+  EXPECT_EQ(t.image.encoding, ImageEncoding::Srgb) << "pbrt's default for PNG files";
+  EXPECT_EQ(t.mapping.su, 2.0f);
+  EXPECT_EQ(t.mapping.dv, 0.25f);
+  EXPECT_TRUE(t.image.invert);
+  EXPECT_EQ(fs::path(t.image.path).filename(), "leaf.png");
+  EXPECT_TRUE(fs::exists(t.image.path));
+  const PbrtTextureDesc& lin = s.pbrt_textures.at(size_t(s.quadrics[1].alpha.texture));
+  EXPECT_EQ(lin.image.encoding, ImageEncoding::Linear);
+  EXPECT_EQ(lin.image.filter, ImageFilter::Point);
+  EXPECT_EQ(std::count(s.external_files.begin(), s.external_files.end(), t.image.path), 1) << "listed once";
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 }
 
