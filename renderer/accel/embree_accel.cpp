@@ -2,7 +2,9 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <cstring>
 #include <string>
@@ -18,18 +20,43 @@
 namespace kiln {
 namespace {
 
+// Time steps of an animated shape's user geometry: Embree interpolates the bounds of neighbouring steps linearly,
+// so each step's box holds the shape over the steps on either side (AnimatedTransform::motion_bounds), and a
+// rotation gets a step per this angle so that the boxes stay tight.
+constexpr float kAnimatedStepTurn = 3.14159265f / 16.0f;
+constexpr unsigned kMaxTimeSteps = 129;  // Embree's limit
+
+unsigned animated_time_steps(const AnimatedTransform& m) {
+  return std::min(kMaxTimeSteps, 2u + unsigned(std::ceil(m.rotation_angle() / kAnimatedStepTurn)));
+}
+
+// A box holding an animated shape over the time steps next to `step` of `steps`.
+RTCBounds animated_step_bounds(const AnimatedTransform& m, const Bounds3f& object, unsigned step, unsigned steps) {
+  const float h = 1.0f / float(steps - 1), t = float(step) * h;
+  const Bounds3f b = m.motion_bounds(object, t - h, t + h);
+  return RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
+}
+
 // What a sphere's user-geometry callbacks need; the transform is skipped for plain spheres.
 // A moving sphere (motion non-zero) has two time steps; the callbacks move the ray back by the sphere's offset at
-// the ray's time instead of moving the sphere.
+// the ray's time instead of moving the sphere. An animated one (pbrt's interpolated transform) takes the ray into
+// its space at the ray's time.
 struct SphereData {
   const SphereShape* shape = nullptr;
   bool has_transform = false;
   Transform to_object;
   Vec3f motion{0.0f};
+  const AnimatedTransform* animated = nullptr;
+  unsigned steps = 2;
 };
 
 void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
   const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
+  if (s->animated) {
+    const Bounds3f object(s->shape->center - Vec3f(s->shape->radius), s->shape->center + Vec3f(s->shape->radius));
+    *args->bounds_o = animated_step_bounds(*s->animated, object, args->timeStep, s->steps);
+    return;
+  }
   Bounds3f b = sphere_world_bounds(*s->shape);
   const Vec3f offset = s->motion * float(args->timeStep);  // time steps 0 and 1 are the shutter's ends
   b.lo += offset;
@@ -37,8 +64,11 @@ void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
   *args->bounds_o = RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
 }
 
-inline void sphere_object_ray(const SphereData& s, Vec3f& o, Vec3f& d) {
-  if (s.has_transform) to_object_space(s.to_object, o, d);
+inline void sphere_object_ray(const SphereData& s, Vec3f& o, Vec3f& d, float time) {
+  if (s.animated)
+    to_object_space(s.animated->at(time).inverse(), o, d);
+  else if (s.has_transform)
+    to_object_space(s.to_object, o, d);
 }
 
 void sphere_intersect_cb(const RTCIntersectFunctionNArguments* args) {
@@ -52,11 +82,13 @@ void sphere_intersect_cb(const RTCIntersectFunctionNArguments* args) {
                      s->motion * RTCRayN_time(ray, args->N, i);
     const Vec3f wd(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
     Vec3f o = wo, d = wd;
-    sphere_object_ray(*s, o, d);
+    const float time = RTCRayN_time(ray, args->N, i);
+    sphere_object_ray(*s, o, d, time);
     const auto t = intersect_sphere(o, d, s->shape->center, s->shape->radius, RTCRayN_tnear(ray, args->N, i),
                                     RTCRayN_tfar(ray, args->N, i));
     if (!t) continue;
-    const Vec3f n = sphere_world_normal(*s->shape, Ray{wo, wd}, *t);
+    const Vec3f n = s->animated ? sphere_world_normal(*s->shape, s->animated->at(time), Ray{wo, wd}, *t)
+                                : sphere_world_normal(*s->shape, Ray{wo, wd}, *t);
     RTCRayN_tfar(ray, args->N, i) = *t;
     RTCHitN_Ng_x(hit, args->N, i) = n.x;
     RTCHitN_Ng_y(hit, args->N, i) = n.y;
@@ -77,10 +109,73 @@ void sphere_occluded_cb(const RTCOccludedFunctionNArguments* args) {
     Vec3f o = Vec3f(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i)) -
               s->motion * RTCRayN_time(ray, args->N, i);
     Vec3f d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
-    sphere_object_ray(*s, o, d);
+    sphere_object_ray(*s, o, d, RTCRayN_time(ray, args->N, i));
     if (intersect_sphere(o, d, s->shape->center, s->shape->radius, RTCRayN_tnear(ray, args->N, i),
                          RTCRayN_tfar(ray, args->N, i)))
       RTCRayN_tfar(ray, args->N, i) = -kInfinity;  // Embree's "occluded" marker
+  }
+}
+
+// An animated instance (pbrt's interpolated transform) as user geometry around its prototype's scene: the ray goes
+// into object space at its own time and is traced there, so Embree and the in-house BVH move it by the same
+// transform (Embree's own instance motion would interpolate differently).
+struct AnimatedInstanceData {
+  const AnimatedTransform* motion = nullptr;
+  RTCScene prototype = nullptr;
+  Bounds3f object_bounds;
+  unsigned steps = 2;
+};
+
+void animated_instance_bounds_cb(const RTCBoundsFunctionArguments* args) {
+  const auto* a = static_cast<const AnimatedInstanceData*>(args->geometryUserPtr);
+  *args->bounds_o = animated_step_bounds(*a->motion, a->object_bounds, args->timeStep, a->steps);
+}
+
+// The ray of lane i in the instance's object space (tfar as it stands: nearer hits found so far still count).
+RTCRayHit object_ray(const AnimatedInstanceData& a, RTCRayN* ray, unsigned n, unsigned i) {
+  Vec3f o(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i));
+  Vec3f d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
+  const float time = RTCRayN_time(ray, n, i);
+  to_object_space(a.motion->at(time).inverse(), o, d);
+  RTCRayHit rh{};
+  rh.ray = {o.x, o.y, o.z, RTCRayN_tnear(ray, n, i), d.x, d.y, d.z, time, RTCRayN_tfar(ray, n, i), 0xffffffffu, 0, 0};
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+void animated_instance_intersect_cb(const RTCIntersectFunctionNArguments* args) {
+  const auto* a = static_cast<const AnimatedInstanceData*>(args->geometryUserPtr);
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    alignas(16) RTCRayHit rh = object_ray(*a, ray, args->N, i);
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcIntersect1(a->prototype, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    RTCRayN_tfar(ray, args->N, i) = rh.ray.tfar;
+    RTCHitN_Ng_x(hit, args->N, i) = rh.hit.Ng_x;
+    RTCHitN_Ng_y(hit, args->N, i) = rh.hit.Ng_y;
+    RTCHitN_Ng_z(hit, args->N, i) = rh.hit.Ng_z;
+    RTCHitN_u(hit, args->N, i) = rh.hit.u;
+    RTCHitN_v(hit, args->N, i) = rh.hit.v;
+    RTCHitN_primID(hit, args->N, i) = rh.hit.primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
+    RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+  }
+}
+
+void animated_instance_occluded_cb(const RTCOccludedFunctionNArguments* args) {
+  const auto* a = static_cast<const AnimatedInstanceData*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    alignas(16) RTCRayHit rh = object_ray(*a, args->ray, args->N, i);
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcOccluded1(a->prototype, &ctx, &rh.ray);
+    if (rh.ray.tfar == -kInfinity) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
   }
 }
 
@@ -104,6 +199,7 @@ struct EmbreeAccel::Impl {
   RTCScene scene = nullptr;
   std::vector<RTCScene> prototype_scenes;  // null for prototypes no instance uses
   std::vector<SphereData> sphere_data;
+  std::vector<AnimatedInstanceData> animated_instances;
   std::string last_error;
   std::atomic<int64_t> bytes{0};
   double build_seconds = 0;
@@ -154,6 +250,19 @@ struct EmbreeAccel::Impl {
     return geom;
   }
 
+  RTCGeometry animated_instance_geometry(const AnimatedTransform& motion, RTCScene proto, const Bounds3f& object) {
+    animated_instances.push_back({&motion, proto, object, animated_time_steps(motion)});
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryTimeStepCount(geom, animated_instances.back().steps);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, &animated_instances.back());
+    rtcSetGeometryBoundsFunction(geom, animated_instance_bounds_cb, nullptr);
+    rtcSetGeometryIntersectFunction(geom, animated_instance_intersect_cb);
+    rtcSetGeometryOccludedFunction(geom, animated_instance_occluded_cb);
+    rtcCommitGeometry(geom);
+    return geom;
+  }
+
   RTCScene new_scene() {
     RTCScene s = rtcNewScene(device);
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
@@ -177,6 +286,7 @@ struct EmbreeAccel::Impl {
         &bytes);
     scene = new_scene();
     sphere_data.reserve(geometry.spheres.size());  // callbacks keep pointers into it
+    animated_instances.reserve(geometry.instances.size());
     prototype_scenes.assign(geometry.prototypes.size(), nullptr);
 
     const auto& shapes = geometry.shapes;
@@ -188,9 +298,11 @@ struct EmbreeAccel::Impl {
         geom = triangle_geometry(geometry.meshes[s.index], s.motion);
       } else if (s.kind == ShapeKind::Sphere) {
         const SphereShape& sph = geometry.spheres[s.index];
-        sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse(), s.motion});
+        const AnimatedTransform* animated = s.animated >= 0 ? &geometry.motions[size_t(s.animated)] : nullptr;
+        const unsigned steps = animated ? animated_time_steps(*animated) : 2;
+        sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse(), s.motion, animated, steps});
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        if (s.moving()) rtcSetGeometryTimeStepCount(geom, 2);
+        if (s.moving()) rtcSetGeometryTimeStepCount(geom, steps);
         rtcSetGeometryUserPrimitiveCount(geom, 1);
         rtcSetGeometryUserData(geom, &sphere_data.back());
         rtcSetGeometryBoundsFunction(geom, sphere_bounds_cb, nullptr);
@@ -208,6 +320,13 @@ struct EmbreeAccel::Impl {
           rtcReleaseGeometry(tri);
           rtcCommitScene(proto);
           check("building an instance prototype");
+        }
+        if (s.animated >= 0) {
+          geom = animated_instance_geometry(geometry.motions[size_t(s.animated)], proto,
+                                            mesh_bounds(geometry.prototypes[inst.prototype]));
+          rtcAttachGeometryByID(scene, geom, id);
+          rtcReleaseGeometry(geom);
+          continue;
         }
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(geom, proto);
@@ -280,7 +399,7 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
     hit.u = rh.hit.u;
     hit.v = rh.hit.v;
     // Recomputed from the vertices so both accelerators report the same (v1-v0)x(v2-v0) convention.
-    hit.ng = triangle_world_normal(g, hit.shape, hit.prim);
+    hit.ng = triangle_world_normal(g, hit.shape, hit.prim, ray.time);
   }
   return true;
 }

@@ -287,9 +287,11 @@ int cmd_render(const RenderArgs& args) {
     const SampleCounts counts = sample_counts(film, crop.value_or(Crop{0, camera.width(), 0, camera.height()}));
     std::vector<AovLayer> aovs;
     double aov_seconds = 0.0;
-    if (aov_flags) {
+    // A scene's own request for AOV layers (pbrt Film "gbuffer"): all of them, unless --aov chose.
+    const uint32_t layers = aov_flags ? aov_flags : (cd->aov_layers ? parse_aovs("all") : 0u);
+    if (layers) {
       const auto t_aov = std::chrono::steady_clock::now();
-      aovs = render_aovs(*world, camera, aov_flags, film, ro, std::min(kAovSamplesPerPixel, spp));
+      aovs = render_aovs(*world, camera, layers, film, ro, std::min(kAovSamplesPerPixel, spp));
       aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_aov).count();
     }
     const Image img = crop ? crop_image(full, *crop) : full;

@@ -76,9 +76,13 @@ std::vector<AovLayer> render_aovs(const World& world, const Camera& camera, uint
             // The AOV pass has its own stream (sample indices past any beauty sample) so it never perturbs the image.
             Rng rng = pixel_sample_rng(options.seed ^ 0xa0fu, uint32_t(x), uint32_t(y), s);
             const Vec2f j = rng.next_2d();
-            Ray ray = camera.generate_ray(float(x) + (float(s % grid) + j.x) / float(grid),
-                                          float(y) + (float(s / grid) + j.y) / float(grid), rng.next_2d());
-            if (world.geometry.has_motion) ray.time = rng.next_float();  // moving shapes averaged over the shutter
+            const Vec2f lens = rng.next_2d();
+            // Moving shapes and cameras averaged over the shutter.
+            const float time = (world.features & kFeatureMotionBlur) ? rng.next_float() : 0.0f;
+            const CameraRay cr = camera.sample(float(x) + (float(s % grid) + j.x) / float(grid),
+                                               float(y) + (float(s / grid) + j.y) / float(grid), lens, time);
+            if (!(cr.weight > 0.0f)) continue;
+            const Ray& ray = cr.ray;
             Hit hit;
             if (!world.accel->intersect(ray, hit)) continue;
             SurfaceInteraction si = make_interaction(world, ray, hit);

@@ -110,11 +110,13 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             const FilterSample fs = pixel_offset(settings, options.spp_total, filter, sampler);
             sampler.set_dimension(kLensDimension);
             const Vec2f lens = sampler.next_2d();
-            Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y, lens);
             // Only a scene with motion takes a time sample (from a dedicated stream: other values are unchanged).
-            if (settings.features & kFeatureMotionBlur) ray.time = sampler.dedicated_1d(kTimeStream);
+            const float time = (settings.features & kFeatureMotionBlur) ? sampler.dedicated_1d(kTimeStream) : 0.0f;
+            const CameraRay cr =
+                camera.sample(float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y, lens, time);
             sampler.set_dimension(kFirstPathDimension);
-            Rgb L = trace(world, settings, ray, film_position, sampler, st.rays);
+            // A ray the lens blocks still counts as a sample, of no radiance.
+            Rgb L = cr.weight > 0.0f ? trace(world, settings, cr.ray, film_position, sampler, st.rays) : Rgb(0.0f);
             if (!L.is_finite() || L.has_negative()) {
               if (!st.has_nan) {
                 st.has_nan = true;
@@ -125,7 +127,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
               ++st.rays.nan_samples;
               L = Rgb(0.0f);
             }
-            L = L * fs.weight;
+            L = L * (fs.weight * cr.weight);
             px.r += L.r;
             px.g += L.g;
             px.b += L.b;

@@ -85,6 +85,29 @@ Vec3f shape_motion(World& w, const std::string& name, Vec3f motion, int light) {
   return motion;
 }
 
+// The animated transform of a sphere or instance whose to_world moves (pbrt ActiveTransform), as an index into
+// WorldGeometry::motions; -1 when it does not move. Emitters stay at their start, as with shape_motion.
+int32_t shape_animation(World& w, const std::string& name, const Transform& start,
+                        const std::optional<TransformMotionDesc>& motion, int light) {
+  if (!motion) return -1;
+  if (light >= 0) {
+    w.warnings.push_back(name + ": a moving emitter is not rendered moving; it stays at its start transform");
+    return -1;
+  }
+  AnimatedTransform a;
+  try {
+    a = AnimatedTransform(start, motion->start_time, motion->end, motion->end_time);
+  } catch (const Error& e) {
+    throw Error(name + ": its motion cannot be interpolated: " + e.what());
+  }
+  if (!a.animated()) return -1;
+  w.features |= kFeatureMotionBlur;
+  w.geometry.has_motion = true;
+  ++w.stats.moving_shapes;
+  w.geometry.motions.push_back(a);
+  return int32_t(w.geometry.motions.size() - 1);
+}
+
 // EXR directly, other formats through the OpenImageIO plugin; a file that cannot be read names the scene element.
 Image read_environment_map(const SceneDesc& scene, const EnvLightDesc& env) {
   try {
@@ -218,7 +241,8 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       w.features |= kFeatureSphereLights;
       w.stats.cone_sampler_built = true;
     }
-    g.shapes.push_back(Shape{ShapeKind::Sphere, uint32_t(g.spheres.size()), shape_motion(w, s.name, s.motion, sd.light)});
+    g.shapes.push_back(Shape{ShapeKind::Sphere, uint32_t(g.spheres.size()), shape_motion(w, s.name, s.motion, sd.light),
+                             shape_animation(w, s.name, s.to_world, s.to_world_motion, sd.light)});
     g.spheres.push_back(SphereShape{s.center, s.radius, s.to_world});
     w.shape_data.push_back(sd);
     w.features |= kFeatureSpheres;
@@ -256,7 +280,9 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
       }
       sd.uvs = pu;
     }
-    g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w, inst.name, inst.motion, -1)});
+    g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size()),
+                             shape_motion(w, inst.name, inst.motion, -1),
+                             shape_animation(w, inst.name, inst.to_world, inst.to_world_motion, -1)});
     g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
     w.shape_data.push_back(sd);
     w.stats.triangles += g.prototypes[size_t(proto)].triangle_count();
@@ -302,8 +328,10 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     w.light_selector = LightSelector(w.lights, options.light_selection);
     w.stats.light_selector_built = true;
   }
-  for (const CameraDesc& c : scene.cameras)
-    if (c.aperture_size > 0.0f) w.features |= kFeatureDepthOfField;
+  for (const CameraDesc& c : scene.cameras) {
+    if (c.aperture_size > 0.0f || c.projection == CameraProjection::Realistic) w.features |= kFeatureDepthOfField;
+    if (c.motion) w.features |= kFeatureMotionBlur;  // rays carry a time for the camera's pose
+  }
 
   if (options.build_accelerator) w.accel = make_accelerator(options.accel, g);
   w.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

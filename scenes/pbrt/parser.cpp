@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 
+#include "core/animated_transform.h"
 #include "core/error.h"
 #include "scenes/gzip_file.h"
 #include "scenes/parse_util.h"
@@ -36,6 +37,8 @@ enum class BlockKind { Attribute, Object, Import };
 
 struct GraphicsState {
   TransformPair ctm;
+  std::array<bool, 2> active = {true, true};  // which of ctm ActiveTransform lets the transform directives change
+  float transform_start = 0.0f, transform_end = 1.0f;  // TransformTimes (pbrt's time)
   bool reverse_orientation = false;
   int material = -1;  // index into SceneDesc::materials; -1: pbrt's default material
   std::optional<PbrtAreaLight> area_light;
@@ -63,11 +66,11 @@ struct OpenFile {
 
 bool same(const Transform& a, const Transform& b) { return a.matrix() == b.matrix(); }
 
+// The matrix only: a singular transform (no inverse) is accepted until something needs its inverse.
 bool finite_transform(const Transform& t) {
-  for (const auto* m : {&t.matrix(), &t.inverse_matrix()})
-    for (const auto& row : m->m)
-      for (float x : row)
-        if (!std::isfinite(x)) return false;
+  for (const auto& row : t.matrix().m)
+    for (float x : row)
+      if (!std::isfinite(x)) return false;
   return true;
 }
 
@@ -212,17 +215,22 @@ class PbrtParser {
 
   // A file named in the scene: relative to the including file's folder, else to the main scene's folder.
   std::string resolve(const std::string& name, int line, const std::string& context) const {
-    if (name.empty()) fail(line, context, "the file name is empty");
+    return resolve_in(files_.back().dir, file(), name, line, context);
+  }
+  // The same for a name written earlier in `file` (of folder `dir`), which may have been closed since.
+  std::string resolve_in(const std::string& dir, const std::string& file, const std::string& name, int line,
+                         const std::string& context) const {
+    if (name.empty()) throw Error(file, location(line, context), "the file name is empty");
     const fs::path p(name);
     if (p.is_absolute()) return p.string();
     std::error_code ec;
-    const fs::path local = fs::path(files_.back().dir) / p;
+    const fs::path local = fs::path(dir) / p;
     if (fs::is_regular_file(local, ec)) return local.lexically_normal().string();
     const fs::path from_root = fs::path(root_dir_) / p;
     if (fs::is_regular_file(from_root, ec)) return from_root.lexically_normal().string();
-    fail(line, context,
-         "cannot find " + in_quotes(name) + " (looked for " + local.lexically_normal().string() +
-             (local == from_root ? "" : " and " + from_root.lexically_normal().string()) + ")");
+    throw Error(file, location(line, context),
+                "cannot find " + in_quotes(name) + " (looked for " + local.lexically_normal().string() +
+                    (local == from_root ? "" : " and " + from_root.lexically_normal().string()) + ")");
   }
 
   // ---- directives ----
@@ -245,7 +253,11 @@ class PbrtParser {
     }
     if (d == "Scale") {
       const auto v = read_numbers<3>(cur, line, d, false);
-      return apply(line, d, [&] { return Transform::scale({v[0], v[1], v[2]}); });
+      return apply(line, d, [&] {
+        Mat4 m = Mat4::identity();
+        for (size_t i = 0; i < 3; ++i) m.m[i][i] = v[i];
+        return Transform::from_matrix_maybe_singular(m);  // pbrt accepts a zero scale (a flattened shape)
+      });
     }
     if (d == "Rotate") {
       const auto v = read_numbers<4>(cur, line, d, false);
@@ -260,7 +272,7 @@ class PbrtParser {
       Mat4 m;
       for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) m.m[r][c] = v[size_t(c * 4 + r)];  // the file lists the matrix by columns
-      const Transform x = checked(line, d, [&] { return Transform::from_matrix(m); });
+      const Transform x = checked(line, d, [&] { return Transform::from_matrix_maybe_singular(m); });
       if (d == "Transform") return set_ctm(line, d, {x, x});
       return apply(line, d, [&] { return x; });
     }
@@ -280,18 +292,22 @@ class PbrtParser {
     if (d == "ActiveTransform") {
       const PbrtToken a = next_token(cur, line, d);
       if (a.is_word("All"))
-        active_ = {true, true};
+        gs_.active = {true, true};
       else if (a.is_word("StartTime"))
-        active_ = {true, false};
+        gs_.active = {true, false};
       else if (a.is_word("EndTime"))
-        active_ = {false, true};
+        gs_.active = {false, true};
       else
         fail(a.line, d, "expected All, StartTime or EndTime, got " + pbrt_describe(a));
       return;
     }
     if (d == "TransformTimes") {
-      read_numbers<2>(cur, line, d, false);
-      return warn(line, d, "shutter times are ignored (Kiln renders no motion blur)");
+      const auto v = read_numbers<2>(cur, line, d, false);
+      require_options(line, d);
+      if (!(v[1] > v[0])) fail(line, d, "the end time must be after the start time");
+      gs_.transform_start = v[0];
+      gs_.transform_end = v[1];
+      return;
     }
     if (d == "ReverseOrientation") {
       gs_.reverse_orientation = !gs_.reverse_orientation;
@@ -360,7 +376,8 @@ class PbrtParser {
       const std::string type = read_string(cur, line, d);
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type), gs_.defaults.light);
       require_world(line, d);
-      if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, d);
+      if (!same(gs_.ctm[0], gs_.ctm[1]))
+        warn(line, d, "the light's transform moves over the shutter; it is lit from its start transform (as pbrt does)");
       return builder_.make_light(type, ps, gs_.ctm[0]);
     }
     if (d == "AreaLightSource") {
@@ -477,7 +494,7 @@ class PbrtParser {
   void apply(int line, const std::string& d, F&& make) {
     const Transform x = checked(line, d, make);
     for (int i = 0; i < 2; ++i)
-      if (active_[size_t(i)]) {
+      if (gs_.active[size_t(i)]) {
         gs_.ctm[size_t(i)] = gs_.ctm[size_t(i)] * x;
         if (!finite_transform(gs_.ctm[size_t(i)]))
           fail(line, d, "the accumulated transformation overflows single precision");
@@ -486,7 +503,7 @@ class PbrtParser {
 
   void set_ctm(int, const std::string&, const TransformPair& t) {
     for (int i = 0; i < 2; ++i)
-      if (active_[size_t(i)]) gs_.ctm[size_t(i)] = t[size_t(i)];
+      if (gs_.active[size_t(i)]) gs_.ctm[size_t(i)] = t[size_t(i)];
   }
 
   // pbrt's LookAt: the camera-from-world transform of an eye at `eye` looking at `look` (camera +z forward, +y up,
@@ -544,7 +561,13 @@ class PbrtParser {
       camera_.camera_type = type;
       camera_.camera = std::move(ps);
       camera_.camera_from_world = gs_.ctm[0];
-      if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, d);
+      camera_.camera_from_world_end.reset();
+      if (!same(gs_.ctm[0], gs_.ctm[1])) camera_.camera_from_world_end = gs_.ctm[1];
+      camera_.transform_start_time = gs_.transform_start;
+      camera_.transform_end_time = gs_.transform_end;
+      camera_.resolve = [this, dir = files_.back().dir, f = file()](const std::string& name, int l) {
+        return resolve_in(dir, f, name, l, "Camera");
+      };
       coord_systems_["camera"] = {gs_.ctm[0].inverse(), gs_.ctm[1].inverse()};
     } else if (d == "Film") {
       camera_.film_type = type;
@@ -580,18 +603,31 @@ class PbrtParser {
 
   void world_begin(int line) {
     if (world_) fail(line, "WorldBegin", "WorldBegin appears twice");
-    CameraDesc c = make_pbrt_camera(camera_, diag_);
+    if (!camera_.resolve)
+      camera_.resolve = [this](const std::string& name, int l) { return resolve(name, l, "Camera"); };
+    PbrtCamera c = make_pbrt_camera(camera_, diag_);
     for (const PbrtParams* ps : {&camera_.camera, &camera_.film, &camera_.sampler, &camera_.filter})
       diag_.report_unused(*ps);
-    scene_.cameras.push_back(c);
+    scene_.cameras.push_back(std::move(c.desc));
+    shutter_ = c.shutter;
     world_ = true;
     gs_.ctm = {Transform(), Transform()};
+    gs_.active = {true, true};
     coord_systems_["world"] = gs_.ctm;
   }
 
-  void motion_blur(int line, const std::string& d) {
-    warn(line, d, "the transform moves during the shutter interval; Kiln renders it at the start (no motion blur)");
-    diag_.unsupported("motion blur (pbrt ActiveTransform)");
+  // The motion of a shape or instance whose transform moves over the shutter, checked as Kiln will use it; empty
+  // when it does not move.
+  std::optional<TransformMotionDesc> motion_of(const Transform& start, const Transform& end, int line,
+                                               const std::string& context) {
+    if (same(start, end)) return std::nullopt;
+    TransformMotionDesc m{end, shutter_.to_kiln(gs_.transform_start), shutter_.to_kiln(gs_.transform_end)};
+    try {
+      AnimatedTransform(start, m.start_time, m.end, m.end_time);
+    } catch (const Error& e) {
+      fail(line, context, std::string("the transform moves over the shutter but cannot be interpolated: ") + e.what());
+    }
+    return m;
   }
 
   void finish() {
@@ -615,7 +651,6 @@ class PbrtParser {
     PbrtShape s = make_pbrt_shape(type, ps, ctx);
     diag_.report_unused(ps);
     if (s.empty()) return;
-    if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "Shape");
     const Transform& to_world = gs_.ctm[0];
     const bool flipped = gs_.reverse_orientation != to_world.swaps_handedness();
     std::optional<PbrtAreaLight> light = gs_.area_light;
@@ -623,12 +658,17 @@ class PbrtParser {
       warn(line, ps.context(), "area lights inside ObjectBegin are not supported (pbrt-v4 ignores them too)");
       light.reset();
     }
+    std::optional<TransformMotionDesc> motion = shape_motion(line, ps.context(), light.has_value());
     const int material = gs_.material >= 0 ? gs_.material : builder_.default_material(file());
     if (s.mesh) {
       MeshDesc& m = *s.mesh;
       m.material = material;
       m.to_world = to_world;
       orient(m, flipped, gs_.reverse_orientation);
+      if (!m.normals.empty() && !to_world.invertible()) {
+        warn(line, ps.context(), "the transform is singular, so the normals \"N\" cannot follow it; face normals used");
+        m.normals.clear();
+      }
       if (light) {
         m.emission = light->radiance;
         m.two_sided_emission = light->two_sided;
@@ -637,12 +677,15 @@ class PbrtParser {
         m.visible = false;
         objects_[*current_object_].meshes.push_back(int(scene_.meshes.size()));
       }
+      if (motion) return moving_mesh(std::move(m), *motion);
       scene_.meshes.push_back(std::move(m));
       return;
     }
     SphereDesc sp = *s.sphere;
     sp.material = material;
     sp.to_world = to_world;
+    sp.to_world_motion = motion;
+    if (!to_world.invertible()) fail(line, ps.context(), "the transform is singular: a sphere needs its inverse");
     if (light) {
       if (flipped) {
         warn(line, ps.context(),
@@ -658,6 +701,36 @@ class PbrtParser {
       objects_[*current_object_].spheres.push_back(sp);
     else
       scene_.spheres.push_back(sp);
+  }
+
+  // The shape's motion when its transform moves over the shutter. Kiln does not move emitters (their light samples
+  // would not follow) nor shapes inside an object definition (instances move as a whole): those stay at the start.
+  std::optional<TransformMotionDesc> shape_motion(int line, const std::string& context, bool emits) {
+    if (same(gs_.ctm[0], gs_.ctm[1])) return std::nullopt;
+    if (emits || current_object_) {
+      warn(line, context,
+           std::string("the transform moves over the shutter, but Kiln does not move ") +
+               (emits ? "area lights" : "shapes inside ObjectBegin (move the ObjectInstance)") +
+               "; it is rendered at its start transform");
+      diag_.unsupported(emits ? "moving area lights (pbrt ActiveTransform on an emitter)"
+                              : "moving shapes inside object definitions (pbrt ActiveTransform in ObjectBegin)");
+      return std::nullopt;
+    }
+    return motion_of(gs_.ctm[0], gs_.ctm[1], line, context);
+  }
+
+  // A moving mesh is rendered as an instance of its object-space self whose transform moves.
+  void moving_mesh(MeshDesc m, const TransformMotionDesc& motion) {
+    m.visible = false;
+    m.is_instance_base = true;
+    InstanceDesc inst;
+    inst.name = m.name;
+    inst.base_mesh = int(scene_.meshes.size());
+    inst.to_world = m.to_world;
+    inst.to_world_motion = motion;
+    inst.material = m.material;
+    scene_.meshes.push_back(std::move(m));
+    scene_.instances.push_back(std::move(inst));
   }
 
   // pbrt's emitting (and refracting) side: the side of the shading normals "N" when the mesh has them (negated by
@@ -688,10 +761,16 @@ class PbrtParser {
     const auto it = objects_.find(name);
     if (it == objects_.end())
       fail(line, "ObjectInstance", "no object named " + in_quotes(name) + " (ObjectBegin defines them)");
-    if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "ObjectInstance");
     const Transform& placement = gs_.ctm[0];
+    if (!placement.invertible())
+      fail(line, "ObjectInstance", "the instance transform is singular: Kiln traces instances through its inverse");
     const std::string label = "ObjectInstance " + in_quotes(name) + " (" + fs::path(file()).filename().string() + ":" +
                               std::to_string(line) + ")";
+    // A moving placement moves every shape of the object with it.
+    const auto moved = [&](const Transform& object_to_world) -> std::optional<TransformMotionDesc> {
+      if (same(gs_.ctm[0], gs_.ctm[1])) return std::nullopt;
+      return motion_of(placement * object_to_world, gs_.ctm[1] * object_to_world, line, "ObjectInstance");
+    };
     for (int mi : it->second.meshes) {
       MeshDesc& base = scene_.meshes[size_t(mi)];
       base.is_instance_base = true;
@@ -699,12 +778,14 @@ class PbrtParser {
       inst.name = label;
       inst.base_mesh = mi;
       inst.to_world = placement * base.to_world;
-      if (!finite_transform(inst.to_world))
-        fail(line, "ObjectInstance", "the instance transform overflows single precision");
+      if (!finite_transform(inst.to_world) || !inst.to_world.invertible())
+        fail(line, "ObjectInstance", "the instance transform overflows single precision or is singular");
+      inst.to_world_motion = moved(base.to_world);
       inst.material = base.material;
       scene_.instances.push_back(inst);
     }
     for (SphereDesc s : it->second.spheres) {
+      s.to_world_motion = moved(s.to_world);
       s.to_world = placement * s.to_world;
       s.name = label + " " + s.name;
       scene_.spheres.push_back(s);
@@ -720,7 +801,7 @@ class PbrtParser {
   std::vector<OpenFile> files_;
   GraphicsState gs_;
   std::vector<Block> blocks_;
-  std::array<bool, 2> active_ = {true, true};
+  PbrtShutter shutter_;
   bool world_ = false, have_camera_ = false, warned_transform_block_ = false;
   PbrtCameraInput camera_;
   std::map<std::string, TransformPair> coord_systems_;
