@@ -210,7 +210,24 @@ class PbrtParser {
     PbrtParams ps(file(), context, line, files_.back().dir);
     ps.set_defaults(defaults.get());
     ps.parse(cur);
+    continue_params(ps, line, context);
     return ps;
+  }
+
+  // pbrt reads one stream of tokens across the end of an included file, so a parameter list that an included file
+  // ends may go on in the file that included it (the included file is closed by the main loop afterwards).
+  void continue_params(PbrtParams& ps, int line, const std::string& context) {
+    for (size_t i = files_.size(); i-- > 1;) {
+      if (files_[i].cursor->peek()) return;  // the list ended inside this file
+      PbrtCursor& outer = *files_[i - 1].cursor;
+      const auto t = outer.peek();
+      if (!t) continue;
+      if (t->kind != PbrtTokenKind::String) return;
+      warn(line, context,
+           "the parameter list goes on after the end of this file, in " + outer.file() + " from line " +
+               std::to_string(t->line) + " (read as one list, as pbrt does)");
+      ps.parse(outer);
+    }
   }
 
   // A file named in the scene: relative to the including file's folder, else to the main scene's folder.

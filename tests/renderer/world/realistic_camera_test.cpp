@@ -1,5 +1,6 @@
 // The realistic camera's lens system (renderer/world/lens_system.h) on a lens whose optics have closed forms: a
-// biconvex singlet (radii +-50 mm, 5 mm of glass of index 1.5) with the aperture stop 3 mm behind it.
+// biconvex singlet (radii +-50 mm, 5 mm of glass of index 1.5, 40 mm across) with a 24 mm aperture stop 3 mm
+// behind it.
 //   * focused at infinity, the film sits at the singlet's back focal distance (thick-lens formula) minus 3 mm;
 //   * focused at 1 m, rays from the film centre through the stop meet again on the axis 1 m in front of the film;
 //   * the exit pupil is the stop itself, so the mean weight of the film centre's rays is the projected solid angle
@@ -20,11 +21,11 @@ namespace {
 
 constexpr const char* kSinglet = R"(# biconvex singlet, stop behind it
 # radius  thickness  eta  aperture
-50    5   1.5  20
--50   3   1    20
-0     45  0    4
+50    5   1.5  40
+-50   3   1    40
+0     45  0    24
 )";
-constexpr float kStopRadius = 0.002f;
+constexpr float kStopRadius = 0.012f;
 // Rays per exit-pupil ring: pbrt's 2^20 take seconds; 2^14 keep the test fast (the bounds are then padded more).
 constexpr int kPupilSamples = 1 << 14;
 
@@ -52,13 +53,13 @@ TEST(RealisticCamera, FocusedAtInfinityTheFilmIsAtTheBackFocalPoint) {
 TEST(RealisticCamera, RaysFromTheFilmCentreMeetAtTheFocusDistance) {
   const LensSystem lens = singlet(1.0f);
   const auto crossing = [&](float h) {
-    const Vec3f film(0, 0, 0), stop(h * kStopRadius, 0, lens.rear_z());
+    const Vec3f film(0, 0, 0), stop(h, 0, lens.rear_z());
     Ray out;
     EXPECT_GT(lens.trace_from_film(Ray{film, stop - film}, &out), 0.0f) << "h " << h;
     const double t = -double(out.o.x) / out.d.x;
     return out.o.z + out.d.z * t;
   };
-  const double z1 = crossing(0.15f), z2 = crossing(0.3f);
+  const double z1 = crossing(0.0003f), z2 = crossing(0.0006f);
   EXPECT_LT(z2, z1) << "a positive singlet's marginal rays focus short";
   EXPECT_NEAR((4.0 * z1 - z2) / 3.0, 1.0, 2e-3);
 }

@@ -207,6 +207,19 @@ TEST(PbrtErrors, MeshDataIsCheckedAgainstItsCounts) {
             std::string::npos);
 }
 
+// pbrt reads tokens across the end of an included file: a parameter list the included file ends goes on in the
+// including file (the quad's indices come after the Include), with a note; the next directive ends it as usual.
+TEST(PbrtIncludes, ParameterListsContinueAfterTheIncludedFileEnds) {
+  const std::string dir = tmp("include_continues");
+  write(dir + "/quad.pbrt", "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n");
+  const SceneDesc s = parse(kHead + "Include \"quad.pbrt\"\n  \"integer indices\" [0 1 2 0 2 3]\nShape \"sphere\"\n",
+                            dir + "/main.pbrt");
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].indices.size(), 6u);
+  EXPECT_EQ(s.spheres.size(), 1u);
+  EXPECT_TRUE(has_warning(s, "quad.pbrt: line 1", "goes on after the end of this file")) << all_warnings(s);
+}
+
 TEST(PbrtErrors, ErrorsInIncludedFilesNameThatFileAndTheInclusion) {
   const std::string dir = tmp("include_error");
   write(dir + "/child.pbrt", "Shape \"sphere\"\nShape \"sphere\" \"float radius\" -1\n");
