@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -264,6 +265,25 @@ struct EnvLightDesc {
 // Constant radiance arriving from every direction (pbrt "infinite" light with "L"), seen by rays that escape.
 struct InfiniteLightDesc { Rgb radiance; };
 
+// What a loader made of one directive of the file (pbrt), for `kiln info`: rendered as written, rendered with a
+// stand-in (a default material, a different filter, the start of a motion), or left out (a shape, a light, a
+// parameter). Remarks change nothing in the image (a deprecated spelling, a replaced sampler).
+enum class LoadOutcome { Rendered, Substituted, Ignored, Remark };
+struct LoadNote {
+  std::string file;
+  int line = 0;
+  std::string directive;  // e.g. Shape "disk"
+  LoadOutcome outcome = LoadOutcome::Remark;
+  std::string feature;    // Substituted / Ignored: what is not rendered as written (as listed in SceneDesc::unsupported)
+  std::string message;
+};
+// How many directives of one kind (e.g. Shape "trianglemesh") the file has, and where the first one is.
+struct DirectiveCount {
+  size_t count = 0;
+  std::string first_file;
+  int first_line = 0;
+};
+
 struct SceneDesc {
   std::string source_path;  // file it was loaded from
   std::string format;       // "ceng795-xml", "cs171-json", "ply", "obj": for messages only, never for decisions
@@ -299,6 +319,10 @@ struct SceneDesc {
   // reported by `kiln info` and warned about once at render time.
   std::vector<std::string> unsupported;
   std::vector<std::string> warnings;
+  // pbrt: every directive by kind, and a note for each one not rendered as written (and each remark), in file
+  // order. A directive without a Substituted or Ignored note is rendered as written.
+  std::map<std::string, DirectiveCount> directives;
+  std::vector<LoadNote> notes;
 };
 
 }  // namespace kiln

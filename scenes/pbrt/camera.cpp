@@ -85,7 +85,10 @@ void apply_filter(const PbrtCameraInput& in, CameraDesc& c, PbrtDiagnostics& dia
   }
   const float xr = ps.get_float("xradius", default_radius), yr = ps.get_float("yradius", default_radius);
   if (!(xr > 0.0f) || !(yr > 0.0f)) ps.fail(ps.line(), "filter radii must be positive");
-  if (xr != yr) diag.warn(ps, "different x and y radii are not supported; both are " + std::to_string(xr));
+  if (xr != yr) {
+    diag.warn(ps, "different x and y radii are not supported; both are " + std::to_string(xr));
+    diag.unsupported("pbrt pixel filters with different x and y radii");
+  }
   f.radius = xr;
   c.filter = f;
 }
@@ -175,8 +178,10 @@ CameraFrame camera_frame(const Transform& camera_from_world, const PbrtParams& c
                      std::abs(dot(right / sr, f.gaze)) < kRigidTolerance &&
                      std::abs(dot(f.up, f.gaze)) < kRigidTolerance && std::abs(sr - sf) <= kRigidTolerance * sf &&
                      std::abs(su - sf) <= kRigidTolerance * sf;
-  if (!rigid)
+  if (!rigid) {
     diag.warn(cam, "the camera transform shears or scales unevenly; Kiln keeps only its position and orientation");
+    diag.unsupported("shearing or unevenly scaling camera transforms");
+  }
   return f;
 }
 
@@ -264,7 +269,11 @@ void realistic(const PbrtCameraInput& in, CameraDesc& c, PbrtDiagnostics& diag) 
   LensSystemDesc lens;
   lens.file = path;
   lens.directive = cam.file() + ": " + cam.location(cam.line());
-  lens.interfaces = parse_lens_file(text, path);
+  try {
+    lens.interfaces = parse_lens_file(text, path);
+  } catch (const Error& e) {
+    cam.fail(cam.line(), std::string("lens file ") + e.what());
+  }
   float aperture = cam.get_float("aperturediameter", kDefaultApertureDiameterMm) * kMillimetre;
   if (!(aperture > 0.0f)) cam.fail(cam.line(), "\"aperturediameter\" must be positive");
   size_t stops = 0;

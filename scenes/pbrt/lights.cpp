@@ -54,7 +54,7 @@ void PbrtBuilder::make_light(const std::string& type, const PbrtParams& ps, cons
     infinite_light(ps, scale);
   } else {
     diag_.warn(ps, "light " + in_quotes(type) + " is not supported; skipped");
-    diag_.unsupported("pbrt light " + in_quotes(type));
+    diag_.unsupported("pbrt light " + in_quotes(type), LoadOutcome::Ignored);
     for (const PbrtParam& p : ps.params()) p.used = true;
   }
   diag_.report_unused(ps);
@@ -65,7 +65,7 @@ void PbrtBuilder::infinite_light(const PbrtParams& ps, float scale) {
   if (ps.has("portal")) ps.get_point3s("portal");
   if (file) {
     diag_.warn(ps, "image-based infinite lights are not rendered yet (" + in_quotes(*file) + ")");
-    diag_.unsupported("image-based infinite lights (pbrt \"infinite\" with \"filename\")");
+    diag_.unsupported("image-based infinite lights (pbrt \"infinite\" with \"filename\")", LoadOutcome::Ignored);
     if (ps.has("L")) light_spectrum(ps, "L");
     if (ps.has("illuminance")) ps.get_float("illuminance", -1.0f);
     return;
@@ -78,7 +78,7 @@ void PbrtBuilder::infinite_light(const PbrtParams& ps, float scale) {
 std::optional<PbrtAreaLight> PbrtBuilder::make_area_light(const std::string& type, const PbrtParams& ps) {
   if (type != "diffuse") {
     diag_.warn(ps, "area light " + in_quotes(type) + " is not supported; the shapes that follow do not emit");
-    diag_.unsupported("pbrt area light " + in_quotes(type));
+    diag_.unsupported("pbrt area light " + in_quotes(type), LoadOutcome::Ignored);
     for (const PbrtParam& p : ps.params()) p.used = true;
     return std::nullopt;
   }

@@ -76,7 +76,8 @@ bool finite_transform(const Transform& t) {
 
 class PbrtParser {
  public:
-  explicit PbrtParser(const std::string& path) : root_path_(path) {
+  PbrtParser(const std::string& path, const PbrtOptions& options) : root_path_(path) {
+    diag_.allow_missing_files = options.allow_missing_files;
     root_dir_ = fs::path(path).parent_path().string();
     if (root_dir_.empty()) root_dir_ = ".";
     scene_.source_path = path;
@@ -130,7 +131,9 @@ class PbrtParser {
       }
       update_trace();
       if (t->kind != PbrtTokenKind::Word) fail(t->line, "", "expected a directive, got " + pbrt_describe(*t));
+      diag_.begin_directive(file(), t->line, std::string(t->text));
       directive(cur, *t);
+      diag_.end_directive();
     }
   }
 
@@ -208,6 +211,7 @@ class PbrtParser {
   PbrtParams read_params(PbrtCursor& cur, int line, const std::string& context,
                          const std::shared_ptr<const PbrtParams>& defaults = nullptr) {
     PbrtParams ps(file(), context, line, files_.back().dir);
+    diag_.name_directive(context);
     ps.set_defaults(defaults.get());
     ps.parse(cur);
     continue_params(ps, line, context);
@@ -301,8 +305,10 @@ class PbrtParser {
     if (d == "CoordSysTransform") {
       const std::string name = read_string(cur, line, d);
       const auto it = coord_systems_.find(name);
-      if (it == coord_systems_.end())
-        return warn(line, d, "no coordinate system named " + in_quotes(name) + "; ignored");
+      if (it == coord_systems_.end()) {
+        warn(line, d, "no coordinate system named " + in_quotes(name) + "; ignored");
+        return diag_.unsupported("CoordSysTransform to an unknown coordinate system", LoadOutcome::Ignored);
+      }
       gs_.ctm = it->second;
       return;
     }
@@ -338,7 +344,8 @@ class PbrtParser {
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type));
       require_options(line, d);
       for (const PbrtParam& p : ps.params()) p.used = true;
-      return warn(line, d, "ignored: Kiln traces rays through Embree (or its own BVH, --accel bvh)");
+      return warn(line, d,
+                  "the same image either way: Kiln traces rays through Embree (or its own BVH, --accel bvh)");
     }
     if (d == "ColorSpace") {
       const std::string name = read_string(cur, line, d);
@@ -351,12 +358,13 @@ class PbrtParser {
     if (d == "Option") {
       const std::string name = read_string(cur, line, d);
       next_token(cur, line, d);
-      return warn(line, d, "option " + in_quotes(name) + " is ignored");
+      warn(line, d, "option " + in_quotes(name) + " is ignored");
+      return diag_.unsupported("pbrt Option " + in_quotes(name), LoadOutcome::Ignored);
     }
     if (d == "WorldBegin") return world_begin(line);
     if (d == "WorldEnd") {
       require_world(line, d);
-      return warn(line, d, "WorldEnd is pbrt-v3 syntax (pbrt-v4 ends the world at the end of the file); ignored");
+      return warn(line, d, "WorldEnd is pbrt-v3 syntax (pbrt-v4 ends the world at the end of the file); skipped");
     }
     if (d == "Attribute") return attribute(cur, line);
     if (d == "Shape") return shape(cur, line);
@@ -425,13 +433,13 @@ class PbrtParser {
       const std::string name = read_string(cur, line, d);
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name));
       for (const PbrtParam& p : ps.params()) p.used = true;
-      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)");
+      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
       return warn(line, d, "participating media are not rendered; medium " + in_quotes(name) + " ignored");
     }
     if (d == "MediumInterface") {
       read_string(cur, line, d);
       if (const auto second = cur.peek(); second && second->kind == PbrtTokenKind::String) cur.next();
-      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)");
+      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
       return warn(line, d, "participating media are not rendered; ignored");
     }
     fail(line, "", "unknown directive '" + std::string(t.text.substr(0, 40)) + "'");
@@ -476,7 +484,8 @@ class PbrtParser {
       slot = &gs_.defaults.texture;
     else if (target == "medium") {
       for (const PbrtParam& p : ps.params()) p.used = true;
-      return warn(line, "Attribute", "participating media are not rendered; ignored");
+      warn(line, "Attribute", "participating media are not rendered; ignored");
+      return diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
     } else {
       fail(line, "Attribute", "unknown target " + in_quotes(target) + " (shape, light, material, medium, texture)");
     }
@@ -550,7 +559,13 @@ class PbrtParser {
     const std::string name = read_string(cur, line, d);
     const bool import = d == "Import";
     if (import) require_world(line, d);
-    const std::string path = resolve(name, line, d);
+    std::string path;
+    try {
+      path = resolve(name, line, d);
+    } catch (const Error&) {
+      if (!diag_.allow_missing_files) throw;
+      return diag_.missing_file(file(), line, d, "included file " + in_quotes(name) + " is missing");
+    }
     std::string text;
     try {
       text = read_file_maybe_gzip(path);
@@ -611,8 +626,10 @@ class PbrtParser {
     const int depth = ps.get_int("maxdepth", kPbrtDefaultMaxDepth);
     if (depth < 0) ps.fail(line, "\"maxdepth\" must not be negative");
     scene_.max_recursion_depth = depth;
-    if (ps.has("regularize") && ps.get_bool("regularize", false))
+    if (ps.has("regularize") && ps.get_bool("regularize", false)) {
       diag_.warn(ps, "\"regularize\" is ignored (Kiln does not regularize near-specular paths)");
+      diag_.unsupported("pbrt path regularization (\"regularize\")", LoadOutcome::Ignored);
+    }
     if (const auto ls = ps.find_string("lightsampler"); ls && *ls != "power")
       diag_.warn(ps, "light sampler " + in_quotes(*ls) + ": Kiln chooses lights in proportion to their power");
     diag_.report_unused(ps);
@@ -684,6 +701,7 @@ class PbrtParser {
       orient(m, flipped, gs_.reverse_orientation);
       if (!m.normals.empty() && !to_world.invertible()) {
         warn(line, ps.context(), "the transform is singular, so the normals \"N\" cannot follow it; face normals used");
+        diag_.unsupported("shading normals under a singular transform");
         m.normals.clear();
       }
       if (light) {
@@ -707,11 +725,13 @@ class PbrtParser {
       if (flipped) {
         warn(line, ps.context(),
              "a sphere light facing inwards (ReverseOrientation) is not supported; it does not emit");
-        diag_.unsupported("inward-facing sphere lights");
+        diag_.unsupported("inward-facing sphere lights", LoadOutcome::Ignored);
       } else {
         sp.emission = light->radiance;
-        if (light->two_sided)
+        if (light->two_sided) {
           warn(line, ps.context(), "a two-sided sphere light emits only outwards in Kiln (its inside is dark)");
+          diag_.unsupported("two-sided sphere lights (the inside is dark)");
+        }
       }
     }
     if (current_object_)
@@ -829,8 +849,12 @@ class PbrtParser {
 
 }  // namespace
 
-SceneDesc parse_pbrt(std::string text, const std::string& path) { return PbrtParser(path).run(std::move(text)); }
+SceneDesc parse_pbrt(std::string text, const std::string& path, const PbrtOptions& options) {
+  return PbrtParser(path, options).run(std::move(text));
+}
 
-SceneDesc load_pbrt(const std::string& path) { return parse_pbrt(read_file_maybe_gzip(path), path); }
+SceneDesc load_pbrt(const std::string& path, const PbrtOptions& options) {
+  return parse_pbrt(read_file_maybe_gzip(path), path, options);
+}
 
 }  // namespace kiln

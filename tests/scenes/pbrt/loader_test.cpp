@@ -656,7 +656,7 @@ TEST(PbrtWarnings, EveryUnsupportedFeatureIsNamedWithFileAndLine) {
       {f + "line 6 (PixelFilter \"sinc\")", "not supported"},
       {f + "line 7 (Integrator \"bdpt\")", "Kiln's path tracer"},
       {f + "line 7 (Integrator \"bdpt\")", "\"regularize\" is ignored"},
-      {f + "line 8 (Accelerator)", "ignored"},
+      {f + "line 8 (Accelerator)", "Kiln traces rays"},
       {f + "line 10 (MakeNamedMedium)", "participating media"},
       {f + "line 11 (Texture \"checks\")", "\"checkerboard\" is not rendered"},
       {f + "line 12 (Material \"diffuse\")", "texture \"checks\""},
@@ -669,7 +669,7 @@ TEST(PbrtWarnings, EveryUnsupportedFeatureIsNamedWithFileAndLine) {
       {f + "line 19 (LightSource \"goniometric\")", "not supported"},
       {f + "line 21 (AreaLightSource \"diffuse\")", "\"power\" is not supported"},
       {f + "line 28 (TransformBegin)", "deprecated"},
-      {f + "line 30 (WorldEnd)", "ignored"},
+      {f + "line 30 (WorldEnd)", "pbrt-v3 syntax"},
   };
   for (const auto& [where, what] : expected)
     EXPECT_TRUE(has_warning(s, where, what)) << where << " " << what << "\n" << all_warnings(s);
