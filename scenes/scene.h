@@ -271,8 +271,10 @@ struct InfiniteLightDesc { Rgb radiance; };
 enum class LoadOutcome { Rendered, Substituted, Ignored, Remark };
 struct LoadNote {
   std::string file;
-  int line = 0;
-  std::string directive;  // e.g. Shape "disk"
+  int line = 0;               // of the note (an unused parameter's own line)
+  std::string directive;      // e.g. Shape "disk", MakeNamedMaterial "floor"
+  std::string kind;           // the key of SceneDesc::directives it counts under: Shape "disk", MakeNamedMaterial
+  int directive_line = 0;     // where the directive starts (one directive may have several notes)
   LoadOutcome outcome = LoadOutcome::Remark;
   std::string feature;    // Substituted / Ignored: what is not rendered as written (as listed in SceneDesc::unsupported)
   std::string message;

@@ -62,13 +62,20 @@ std::string where(const std::string& file, int line) { return file + ":" + std::
 
 // Directives of each kind that have a note saying they are not rendered as written (counted once per directive).
 std::map<std::string, size_t> not_rendered_as_written(const SceneDesc& s) {
-  std::map<std::string, std::map<std::string, int>> seen;  // directive -> location -> 1
+  std::map<std::string, std::map<std::string, int>> seen;  // kind -> directive's location -> 1
   for (const LoadNote& n : s.notes)
     if (n.outcome == LoadOutcome::Substituted || n.outcome == LoadOutcome::Ignored)
-      seen[n.directive][where(n.file, n.line)] = 1;
+      seen[n.kind][where(n.file, n.directive_line)] = 1;
   std::map<std::string, size_t> out;
   for (const auto& [d, locations] : seen) out[d] = locations.size();
   return out;
+}
+
+size_t rendered_as_written(const std::map<std::string, size_t>& partial, const std::string& kind,
+                           const DirectiveCount& c) {
+  const auto it = partial.find(kind);
+  const size_t not_as_written = it == partial.end() ? 0 : it->second;
+  return c.count > not_as_written ? c.count - not_as_written : 0;
 }
 
 struct Loaded {
@@ -97,12 +104,12 @@ Loaded load(const InfoArgs& args) {
 // One line per note, every line self-contained so that surveys can grep it:
 //   <outcome>: <file>:<line>: <directive> [<feature>]: <message>
 // with <outcome> one of substituted / ignored / remark (remarks have no feature). In file order per outcome; past
-// kNotesShownPerGroup notes of one (directive, feature), the rest are counted on a line that starts with "...".
+// kNotesShownPerGroup notes of one (directive kind, feature), the rest are counted on a line that starts with "...".
 void print_notes(const SceneDesc& s, LoadOutcome o) {
   std::map<std::pair<std::string, std::string>, size_t> shown;
   for (const LoadNote& n : s.notes) {
     if (n.outcome != o) continue;
-    if (shown[{n.directive, n.feature}]++ >= kNotesShownPerGroup) continue;
+    if (shown[{n.kind, n.feature}]++ >= kNotesShownPerGroup) continue;
     const std::string feature = n.feature.empty() ? "" : " [" + n.feature + "]";
     std::printf("%s: %s: %s%s: %s\n", outcome_name(o), where(n.file, n.line).c_str(), n.directive.c_str(),
                 feature.c_str(), n.message.empty() ? n.feature.c_str() : n.message.c_str());
@@ -122,8 +129,7 @@ void print_directives(const SceneDesc& s) {
   std::printf("directives: %zu, %zu rendered as written, %zu not (substituted or ignored, below)\n", total,
               total - partial_total, partial_total);
   for (const auto& [d, c] : s.directives) {
-    const auto it = partial.find(d);
-    const size_t n = c.count - (it == partial.end() ? 0 : it->second);
+    const size_t n = rendered_as_written(partial, d, c);
     if (n > 0) std::printf("rendered: %s x%zu\n", d.c_str(), n);
   }
   for (LoadOutcome o : {LoadOutcome::Substituted, LoadOutcome::Ignored, LoadOutcome::Remark}) print_notes(s, o);
@@ -133,7 +139,7 @@ void print_directives(const SceneDesc& s) {
 void print_unsupported(const SceneDesc& s) {
   std::map<std::string, std::map<std::string, int>> places;  // feature -> location -> 1
   for (const LoadNote& n : s.notes)
-    if (!n.feature.empty()) places[n.feature][where(n.file, n.line)] = 1;
+    if (!n.feature.empty()) places[n.feature][where(n.file, n.directive_line)] = 1;
   for (const std::string& u : s.unsupported) {
     const size_t n = places[u].size();
     std::printf("not rendered yet: %s (%zu directive%s)\n", u.c_str(), n, n == 1 ? "" : "s");
@@ -228,15 +234,15 @@ void print_json(const InfoArgs& args, const Loaded& l) {
   const auto partial = not_rendered_as_written(s);
   nlohmann::ordered_json directives = nlohmann::ordered_json::object();
   for (const auto& [d, c] : s.directives) {
-    const auto it = partial.find(d);
     directives[d] = {{"count", c.count},
-                     {"rendered_as_written", c.count - (it == partial.end() ? 0 : it->second)},
+                     {"rendered_as_written", rendered_as_written(partial, d, c)},
                      {"first", where(c.first_file, c.first_line)}};
   }
   j["directives"] = directives;
   j["notes"] = nlohmann::json::array();
   for (const LoadNote& n : s.notes)
-    j["notes"].push_back({{"file", n.file}, {"line", n.line}, {"directive", n.directive},
+    j["notes"].push_back({{"file", n.file}, {"line", n.line}, {"directive", n.directive}, {"kind", n.kind},
+                          {"directive_line", n.directive_line},
                           {"outcome", outcome_name(n.outcome)}, {"feature", n.feature}, {"message", n.message}});
   j["warnings"] = s.warnings;
   std::printf("%s\n", j.dump(1).c_str());

@@ -50,6 +50,13 @@ class PbrtBuilder {
   // MakeNamedMaterial: ps holds "type" and the material's parameters.
   void make_named_material(const std::string& name, const PbrtParams& ps);
   std::optional<int> named_material(const std::string& name) const;
+  // NamedMaterial: the material's index. pbrt-v4 looks names up once the whole file is read, so a name may be used
+  // before its MakeNamedMaterial (the collection's contemporary-bathroom does): it gets a slot now, which the
+  // definition fills.
+  int use_named_material(const std::string& name, const std::string& file, int line);
+  // At the end of the scene: a name used but defined nowhere is an error naming where it was used; with
+  // allow_missing_files (its definition may be in a missing file) pbrt's default material stands in, reported.
+  void finish_named_materials();
   // pbrt's default material (diffuse, reflectance 0.5), made on first use; `file` names the scene in messages.
   int default_material(const std::string& file);
 
@@ -77,6 +84,13 @@ class PbrtBuilder {
   SceneDesc& scene_;
   PbrtDiagnostics diag_;
   std::map<std::string, int> named_materials_;
+  struct ForwardMaterial {
+    int slot = -1;
+    std::string file;  // where the name was first used
+    int line = 0;
+  };
+  std::map<std::string, ForwardMaterial> forward_materials_;  // used, not defined yet
+  void fill_material_slot(int slot, int made);
   std::map<std::string, PbrtTextureDef> textures_;
   int default_material_ = -1;
 };

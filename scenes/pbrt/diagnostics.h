@@ -25,16 +25,19 @@ class PbrtDiagnostics {
   // The directive being read (the parser brackets each one): notes attach to it, and it is counted by `name`,
   // which name_directive() may refine once its type is read (Shape -> Shape "disk").
   void begin_directive(const std::string& file, int line, const std::string& name) {
-    current_ = {file, line, name};
+    current_ = {file, line, name, name};
     first_note_ = scene_.notes.size();
     pending_.clear();
   }
-  void name_directive(const std::string& name) { current_.name = name; }
+  void name_directive(const std::string& name) {
+    current_.name = name;
+    current_.kind = kind_of(name);
+  }
   void end_directive() {
     for (const Pending& p : pending_)
-      scene_.notes.push_back({current_.file, current_.line, current_.name, p.outcome, p.feature, ""});
+      scene_.notes.push_back(note(current_.file, current_.line, current_.name, current_.line, p.outcome, p.feature, ""));
     pending_.clear();
-    DirectiveCount& c = scene_.directives[current_.name];
+    DirectiveCount& c = scene_.directives[current_.kind];
     if (c.count++ == 0) {
       c.first_file = current_.file;
       c.first_line = current_.line;
@@ -50,7 +53,8 @@ class PbrtDiagnostics {
     // A note about the directive being read is filed under its full name (Shape "disk"); one about another
     // directive (the Film, made at WorldBegin) under the context given.
     const bool here = line == current_.line && file == current_.file;
-    LoadNote n{file, line, here || context.empty() ? current_.name : context, LoadOutcome::Remark, "", message};
+    LoadNote n = note(file, line, here || context.empty() ? current_.name : context, line, LoadOutcome::Remark, "",
+                      message);
     if (!pending_.empty()) {
       n.outcome = pending_.front().outcome;
       n.feature = pending_.front().feature;
@@ -91,16 +95,27 @@ class PbrtDiagnostics {
       const std::string decl = std::string(pbrt_type_name(p.type)) + " " + p.name;
       const std::string message = "parameter \"" + decl + "\" is not used by Kiln; ignored";
       scene_.warnings.push_back(Error::format(ps.file(), ps.location(p.line), message));
-      scene_.notes.push_back({ps.file(), p.line, ps.context(), LoadOutcome::Ignored, "parameter \"" + decl + "\"",
-                              message});
+      scene_.notes.push_back(
+          note(ps.file(), p.line, ps.context(), ps.line(), LoadOutcome::Ignored, "parameter \"" + decl + "\"", message));
     }
   }
 
  private:
+  // Directives whose string is the user's name for what they define are counted under their own word.
+  static std::string kind_of(const std::string& name) {
+    const std::string word = name.substr(0, name.find(' '));
+    return word == "MakeNamedMaterial" || word == "Texture" || word == "MakeNamedMedium" ? word : name;
+  }
+  static LoadNote note(const std::string& file, int line, const std::string& directive, int directive_line,
+                       LoadOutcome outcome, const std::string& feature, const std::string& message) {
+    return {file, line, directive, kind_of(directive), directive_line, outcome, feature, message};
+  }
+
   struct Directive {
     std::string file;
     int line = 0;
-    std::string name;
+    std::string name;  // in notes: Shape "disk", MakeNamedMaterial "floor"
+    std::string kind;  // counted as: Shape "disk", MakeNamedMaterial
   };
   struct Pending {
     std::string feature;

@@ -384,9 +384,7 @@ class PbrtParser {
     if (d == "NamedMaterial") {
       const std::string name = read_string(cur, line, d);
       require_world(line, d);
-      const auto material = builder_.named_material(name);
-      if (!material) fail(line, d, "no material named " + in_quotes(name) + " (MakeNamedMaterial defines them)");
-      gs_.material = *material;
+      gs_.material = builder_.use_named_material(name, file(), line);
       return;
     }
     if (d == "Texture") {
@@ -673,6 +671,7 @@ class PbrtParser {
       throw Error(root_path_, end, "missing WorldBegin: the file ends before the world block (no shapes or lights)");
     for (const Block& b : blocks_)
       diag_.warn(b.file, b.line, "AttributeBegin", "has no matching AttributeEnd before the end of the scene");
+    builder_.finish_named_materials();
   }
 
   // ---- shapes ----

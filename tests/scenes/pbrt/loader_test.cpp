@@ -220,6 +220,26 @@ TEST(PbrtIncludes, ParameterListsContinueAfterTheIncludedFileEnds) {
   EXPECT_TRUE(has_warning(s, "quad.pbrt: line 1", "goes on after the end of this file")) << all_warnings(s);
 }
 
+// pbrt-v4 looks named materials up once the whole file is read: a shape may use a name defined further down (as
+// the collection's contemporary-bathroom does, before its Include of materials.pbrt). A name defined nowhere is an
+// error naming the line that used it.
+TEST(PbrtMaterials, NamedMaterialsMayBeUsedBeforeTheyAreDefined) {
+  const SceneDesc s = parse(kHead + "NamedMaterial \"later\"\nShape \"sphere\"\nNamedMaterial \"now\"\nShape \"sphere\"\n"
+                                    "MakeNamedMaterial \"later\" \"string type\" \"diffuse\" \"rgb reflectance\" [0.2 0.3 0.4]\n"
+                                    "MakeNamedMaterial \"now\" \"string type\" \"conductor\"\n"
+                                    "NamedMaterial \"now\"\nShape \"sphere\"\n");
+  ASSERT_EQ(s.spheres.size(), 3u);
+  ASSERT_EQ(s.materials.size(), 2u) << "one material per name, the slot filled by the definition";
+  const auto& later = s.materials[size_t(s.spheres[0].material)];
+  EXPECT_EQ(later.pbrt->kind, PbrtMaterialKind::Diffuse);
+  EXPECT_EQ(later.pbrt->reflectance, Rgb(0.2f, 0.3f, 0.4f));
+  EXPECT_EQ(later.id, s.spheres[0].material + 1);
+  EXPECT_EQ(s.materials[size_t(s.spheres[1].material)].pbrt->kind, PbrtMaterialKind::Conductor);
+  EXPECT_EQ(s.spheres[2].material, s.spheres[1].material);
+  const std::string e = error_of(kHead + "Shape \"sphere\"\nNamedMaterial \"nowhere\"\nShape \"sphere\"\n");
+  EXPECT_NE(e.find("inline.pbrt: line 6 (NamedMaterial): no material named \"nowhere\""), std::string::npos) << e;
+}
+
 TEST(PbrtErrors, ErrorsInIncludedFilesNameThatFileAndTheInclusion) {
   const std::string dir = tmp("include_error");
   write(dir + "/child.pbrt", "Shape \"sphere\"\nShape \"sphere\" \"float radius\" -1\n");
