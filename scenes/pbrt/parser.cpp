@@ -215,6 +215,7 @@ class PbrtParser {
     ps.set_defaults(defaults.get());
     ps.parse(cur);
     continue_params(ps, line, context);
+    for (const PbrtParams::Remark& r : ps.remarks()) warn(r.line, context, r.message);
     return ps;
   }
 
@@ -562,7 +563,11 @@ class PbrtParser {
       path = resolve(name, line, d);
     } catch (const Error&) {
       if (!diag_.allow_missing_files) throw;
-      return diag_.missing_file(file(), line, d, "included file " + in_quotes(name) + " is missing");
+      diag_.missing_file(file(), line, d, "included file " + in_quotes(name) + " is missing");
+      // Parameters that go on after the Include belong to the missing file's last directive: left out with it.
+      PbrtParams rest(file(), d, line, files_.back().dir);
+      rest.parse(cur);
+      return;
     }
     std::string text;
     try {

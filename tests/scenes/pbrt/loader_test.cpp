@@ -132,7 +132,6 @@ TEST(PbrtParams, BadValuesAreErrorsNamingFileLineAndDirective) {
       {"Shape \"sphere\" \"float radius\" [ 1 2 ]", "takes one value"},
       {"Shape \"sphere\" \"integer radius\" [ 1 ]", "is declared \"integer\""},
       {"Shape \"sphere\" \"colour radius\" [ 1 ]", "unknown parameter type"},
-      {"Shape \"sphere\" \"float radius\" 1 \"float radius\" 2", "given twice"},
       {"Shape \"sphere\" \"float\" 1", "\"type name\""},
       {"Shape \"sphere\" \"float radius\" [ 1", "closing ']'"},
       {"Shape \"sphere\" \"float radius\" ]", "']' without '['"},
@@ -156,6 +155,16 @@ TEST(PbrtParams, BadValuesAreErrorsNamingFileLineAndDirective) {
 TEST(PbrtParams, UnusedParametersAreWarnedWithTheirLine) {
   const SceneDesc s = parse(kHead + "Shape \"sphere\"\n  \"float radius\" 1\n  \"float zap\" 3\n");
   EXPECT_TRUE(has_warning(s, "inline.pbrt: line 7 (Shape \"sphere\")", "\"float zap\" is not used")) << all_warnings(s);
+}
+
+// pbrt-v4 looks a parameter up from the end of its list, so a name given twice keeps its last value (the
+// collection's villa materials do it); Kiln says so on the second one's line.
+TEST(PbrtParams, AParameterGivenTwiceKeepsItsLastValue) {
+  const SceneDesc s = parse(kHead + "Shape \"sphere\" \"float radius\" 1\n  \"float radius\" 2\n");
+  ASSERT_EQ(s.spheres.size(), 1u);
+  EXPECT_FLOAT_EQ(s.spheres[0].radius, 2.0f);
+  EXPECT_TRUE(has_warning(s, "inline.pbrt: line 6 (Shape \"sphere\")", "\"radius\" is given twice (first on line 5)"))
+      << all_warnings(s);
 }
 
 // ---- errors the issue names ----
