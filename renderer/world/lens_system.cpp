@@ -73,6 +73,22 @@ void cardinal_points(const Ray& in, const Ray& out, float& pz, float& fz) {
   pz = -(out.o.z + out.d.z * tp);
 }
 
+// Moves r onto interface e (its vertex at z) and refracts it from eta_i into eta_t; false when the interface or
+// its aperture stops the ray or it is totally reflected.
+bool pass_interface(const LensInterfaceDesc& e, float z, float eta_i, float eta_t, Ray& r) {
+  Vec3f n;
+  const auto t = cross_interface(e, z, r, n);
+  if (!t) return false;
+  const Vec3f p = r.at(*t);
+  if (p.x * p.x + p.y * p.y > e.aperture_radius * e.aperture_radius) return false;
+  r.o = p;
+  if (e.curvature_radius == 0.0f) return true;  // the aperture stop: no glass
+  const auto refracted = refract(normalize(-r.d), n, eta_t / eta_i);
+  if (!refracted) return false;
+  r.d = refracted->wt;
+  return true;
+}
+
 }  // namespace
 
 LensSystem::LensSystem(const LensSystemDesc& desc, int full_width, int full_height, const std::string& where,
@@ -105,21 +121,10 @@ float LensSystem::trace_from_film(const Ray& camera_ray, Ray* out) const {
   float z = 0.0f;
   Ray r = flip_z(camera_ray);
   for (size_t k = interfaces_.size(); k-- > 0;) {
-    const LensInterfaceDesc& e = interfaces_[k];
-    z -= e.thickness;
-    Vec3f n;
-    const auto t = cross_interface(e, z, r, n);
-    if (!t) return 0.0f;
-    const Vec3f p = r.at(*t);
-    if (p.x * p.x + p.y * p.y > e.aperture_radius * e.aperture_radius) return 0.0f;
-    r.o = p;
-    if (e.curvature_radius != 0.0f) {
-      // From the glass behind the interface (its own eta) into the one in front of it.
-      const float eta_i = medium_eta(e.eta), eta_t = k > 0 ? medium_eta(interfaces_[k - 1].eta) : 1.0f;
-      const auto refracted = refract(normalize(-r.d), n, eta_t / eta_i);
-      if (!refracted) return 0.0f;
-      r.d = refracted->wt;
-    }
+    z -= interfaces_[k].thickness;
+    // From the glass behind the interface (its own eta) into the one in front of it.
+    const float eta_i = medium_eta(interfaces_[k].eta), eta_t = k > 0 ? medium_eta(interfaces_[k - 1].eta) : 1.0f;
+    if (!pass_interface(interfaces_[k], z, eta_i, eta_t, r)) return 0.0f;
   }
   if (out) *out = flip_z(r);
   return 1.0f;
@@ -129,20 +134,9 @@ float LensSystem::trace_from_scene(const Ray& camera_ray, Ray* out) const {
   float z = -front_z();
   Ray r = flip_z(camera_ray);
   for (size_t k = 0; k < interfaces_.size(); ++k) {
-    const LensInterfaceDesc& e = interfaces_[k];
-    Vec3f n;
-    const auto t = cross_interface(e, z, r, n);
-    if (!t) return 0.0f;
-    const Vec3f p = r.at(*t);
-    if (p.x * p.x + p.y * p.y > e.aperture_radius * e.aperture_radius) return 0.0f;
-    r.o = p;
-    if (e.curvature_radius != 0.0f) {
-      const float eta_i = k == 0 ? 1.0f : medium_eta(interfaces_[k - 1].eta), eta_t = medium_eta(e.eta);
-      const auto refracted = refract(normalize(-r.d), n, eta_t / eta_i);
-      if (!refracted) return 0.0f;
-      r.d = refracted->wt;
-    }
-    z += e.thickness;
+    const float eta_i = k == 0 ? 1.0f : medium_eta(interfaces_[k - 1].eta), eta_t = medium_eta(interfaces_[k].eta);
+    if (!pass_interface(interfaces_[k], z, eta_i, eta_t, r)) return 0.0f;
+    z += interfaces_[k].thickness;
   }
   if (out) *out = flip_z(r);
   return 1.0f;
