@@ -22,12 +22,4 @@ class Image {
   std::vector<Rgb> px_;
 };
 
-// The pixels [x0, x1) x [y0, y1) of img (within its bounds) as an image of their own.
-inline Image sub_image(const Image& img, int x0, int y0, int x1, int y1) {
-  Image out(x1 - x0, y1 - y0);
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) out.at(x - x0, y - y0) = img.at(x, y);
-  return out;
-}
-
 }  // namespace kiln

@@ -4,6 +4,7 @@
 
 #include "renderer/cli/commands.h"
 #include "renderer/integrators/integrator.h"
+#include "renderer/render/scene_fingerprint.h"
 #include "renderer/texture/scene_textures.h"
 #include "renderer/world/camera.h"
 #include "renderer/world/world.h"
@@ -78,9 +79,17 @@ size_t rendered_as_written(const std::map<std::string, size_t>& partial, const s
   return c.count > not_as_written ? c.count - not_as_written : 0;
 }
 
+// The scene's identity as `kiln merge` checks it (renderer/render/scene_fingerprint.h): every file it covers.
+void print_identity(const SceneFingerprint& f) {
+  std::printf("identity: %s (%zu files, %llu bytes)\n", f.hash.c_str(), f.files.size(), (unsigned long long)f.bytes);
+  for (const FingerprintedFile& file : f.files)
+    std::printf("  %s %12llu  %s\n", file.hash.c_str(), (unsigned long long)file.bytes, file.name.c_str());
+}
+
 struct Loaded {
+  SceneFingerprint fingerprint;
   SceneDesc scene;
-  SceneRules rules;
+  SceneRules rules = SceneRules::Kiln;
   RuleOverrides overrides;
   std::unique_ptr<World> world;
 };
@@ -89,7 +98,8 @@ Loaded load(const InfoArgs& args) {
   LoadOptions lo;
   lo.subdivide = args.subdivide;
   lo.allow_missing_files = args.allow_missing;
-  Loaded l{load_scene(args.scene, lo), SceneRules::Kiln, {}, nullptr};
+  Loaded l;
+  l.scene = load_scene_fingerprinted(args.scene, lo, l.fingerprint);
   l.overrides.rules = args.rules;
   l.rules = resolve_rules(l.scene, l.overrides);
   WorldOptions wo;
@@ -195,6 +205,7 @@ void print_text(const InfoArgs& args, const Loaded& l) {
       std::printf("; %zu filtered over a footprint, computed on %zu bindings", t.filtered, t.footprint_bindings);
     std::printf("\n");
   }
+  print_identity(l.fingerprint);
   for (const std::string& w : world.warnings) std::printf("warning: %s\n", w.c_str());
   if (s.directives.empty()) {
     for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
@@ -211,6 +222,7 @@ void print_json(const InfoArgs& args, const Loaded& l) {
   j["scene"] = args.scene;
   j["format"] = s.format;
   j["rules"] = rules_name(l.rules);
+  j["identity"] = l.fingerprint.hash;
   j["cameras"] = nlohmann::json::array();
   for (const CameraDesc& c : s.cameras)
     j["cameras"].push_back({{"id", c.id}, {"projection", projection_name(c.projection)}, {"width", c.width},
