@@ -11,10 +11,12 @@
 #include <vector>
 
 #include "core/error.h"
-#include "renderer/accel/surface_point.h"
+#include "renderer/accel/alpha.h"
 #include "renderer/accel/object_ray.h"
+#include "renderer/accel/quadric_intersect.h"
 #include "renderer/accel/shape_bounds.h"
 #include "renderer/accel/sphere_intersect.h"
+#include "renderer/accel/surface_point.h"
 #include "renderer/accel/traceable_ray.h"
 
 namespace kiln {
@@ -50,6 +52,15 @@ struct SphereData {
   unsigned steps = 2;
 };
 
+// A user geometry's bounds at a time step: its time-0 bounds moved by its motion (time steps 0 and 1 are the
+// shutter's ends).
+void store_bounds(const RTCBoundsFunctionArguments* args, Bounds3f b, Vec3f motion) {
+  const Vec3f offset = motion * float(args->timeStep);
+  b.lo += offset;
+  b.hi += offset;
+  *args->bounds_o = RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
+}
+
 void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
   const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
   if (s->animated) {
@@ -57,11 +68,7 @@ void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
     *args->bounds_o = animated_step_bounds(*s->animated, object, args->timeStep, s->steps);
     return;
   }
-  Bounds3f b = sphere_world_bounds(*s->shape);
-  const Vec3f offset = s->motion * float(args->timeStep);  // time steps 0 and 1 are the shutter's ends
-  b.lo += offset;
-  b.hi += offset;
-  *args->bounds_o = RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
+  store_bounds(args, sphere_world_bounds(*s->shape), s->motion);
 }
 
 inline void sphere_object_ray(const SphereData& s, Vec3f& o, Vec3f& d, float time) {
@@ -116,6 +123,18 @@ void sphere_occluded_cb(const RTCOccludedFunctionNArguments* args) {
   }
 }
 
+// The intersect context Kiln passes to every query: Embree hands it to the callbacks, which read the world-space
+// ray from it (the alpha hash is taken of the ray as the caller gave it, also inside instances, where Embree's own
+// ray is in object space).
+struct QueryContext {
+  RTCIntersectContext rtc;  // first member: Embree's pointer to it is a pointer to the whole
+  const Ray* world_ray;     // the caller's, alive for the query
+};
+
+const Ray& world_ray_of(const RTCIntersectContext* context) {
+  return *reinterpret_cast<const QueryContext*>(context)->world_ray;
+}
+
 // An animated instance (pbrt's interpolated transform) as user geometry around its prototype's scene: the ray goes
 // into object space at its own time and is traced there, so Embree and the in-house BVH move it by the same
 // transform (Embree's own instance motion would interpolate differently).
@@ -144,6 +163,16 @@ RTCRayHit object_ray(const AnimatedInstanceData& a, RTCRayN* ray, unsigned n, un
   return rh;
 }
 
+// The context of the query inside the prototype: the caller's world-space ray for alpha, and the instance's shape as
+// instID (Embree reports it with the prototype's hits, as for its own instances), so alpha asks about the instance.
+QueryContext prototype_context(const RTCIntersectContext* outer, unsigned instance_shape) {
+  QueryContext c{};
+  rtcInitIntersectContext(&c.rtc);
+  c.rtc.instID[0] = instance_shape;
+  c.world_ray = &world_ray_of(outer);
+  return c;
+}
+
 void animated_instance_intersect_cb(const RTCIntersectFunctionNArguments* args) {
   const auto* a = static_cast<const AnimatedInstanceData*>(args->geometryUserPtr);
   RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
@@ -151,9 +180,8 @@ void animated_instance_intersect_cb(const RTCIntersectFunctionNArguments* args) 
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     alignas(16) RTCRayHit rh = object_ray(*a, ray, args->N, i);
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcIntersect1(a->prototype, &ctx, &rh);
+    QueryContext ctx = prototype_context(args->context, args->geomID);
+    rtcIntersect1(a->prototype, &ctx.rtc, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
     RTCRayN_tfar(ray, args->N, i) = rh.ray.tfar;
     RTCHitN_Ng_x(hit, args->N, i) = rh.hit.Ng_x;
@@ -172,10 +200,81 @@ void animated_instance_occluded_cb(const RTCOccludedFunctionNArguments* args) {
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     alignas(16) RTCRayHit rh = object_ray(*a, args->ray, args->N, i);
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcOccluded1(a->prototype, &ctx, &rh.ray);
+    QueryContext ctx = prototype_context(args->context, args->geomID);
+    rtcOccluded1(a->prototype, &ctx.rtc, &rh.ray);
     if (rh.ray.tfar == -kInfinity) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+  }
+}
+
+// What a quadric's user-geometry callbacks need (as SphereData).
+struct QuadricData {
+  const WorldGeometry* geometry = nullptr;
+  uint32_t shape = 0;
+  const QuadricShape* quadric = nullptr;
+  Transform to_object;
+  Vec3f motion{0.0f};
+  bool alpha = false;
+};
+
+void quadric_bounds_cb(const RTCBoundsFunctionArguments* args) {
+  const auto* q = static_cast<const QuadricData*>(args->geometryUserPtr);
+  store_bounds(args, quadric_world_bounds(*q->quadric), q->motion);
+}
+
+// Lane i of a ray packet against the quadric (object space), its alpha test included.
+std::optional<QuadricHit> quadric_lane(const QuadricData& q, const RTCIntersectContext* context, RTCRayN* ray,
+                                       unsigned n, unsigned i) {
+  Vec3f o = Vec3f(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i)) -
+            q.motion * RTCRayN_time(ray, n, i);
+  Vec3f d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
+  to_object_space(q.to_object, o, d);
+  return intersect_quadric(q.quadric->quadric, o, d, RTCRayN_tnear(ray, n, i), RTCRayN_tfar(ray, n, i),
+                           [&](const QuadricHit& h) {
+                             return !q.alpha || alpha_keeps(*q.geometry, world_ray_of(context), q.shape, 0, h.uv,
+                                                            h.root);
+                           });
+}
+
+void quadric_intersect_cb(const RTCIntersectFunctionNArguments* args) {
+  const auto* q = static_cast<const QuadricData*>(args->geometryUserPtr);
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const auto h = quadric_lane(*q, args->context, ray, args->N, i);
+    if (!h) continue;
+    // The normal is computed once for the closest hit (EmbreeAccel::intersect), as the BVH does.
+    RTCRayN_tfar(ray, args->N, i) = h->t;
+    RTCHitN_Ng_x(hit, args->N, i) = 0.0f;
+    RTCHitN_Ng_y(hit, args->N, i) = 0.0f;
+    RTCHitN_Ng_z(hit, args->N, i) = 1.0f;
+    RTCHitN_u(hit, args->N, i) = h->uv.x;
+    RTCHitN_v(hit, args->N, i) = h->uv.y;
+    RTCHitN_primID(hit, args->N, i) = args->primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
+    RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+  }
+}
+
+void quadric_occluded_cb(const RTCOccludedFunctionNArguments* args) {
+  const auto* q = static_cast<const QuadricData*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    if (quadric_lane(*q, args->context, args->ray, args->N, i)) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+  }
+}
+
+// Alpha on triangles: Embree asks about every candidate hit; a rejected one (valid = 0) lets traversal go on. The
+// shape is the instance's when the triangle belongs to an instanced prototype.
+void triangle_alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* g = static_cast<const WorldGeometry*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned inst = RTCHitN_instID(args->hit, args->N, i, 0);
+    const uint32_t shape = inst != RTC_INVALID_GEOMETRY_ID ? inst : RTCHitN_geomID(args->hit, args->N, i);
+    const Vec2f b(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    if (!alpha_keeps(*g, world_ray_of(args->context), shape, RTCHitN_primID(args->hit, args->N, i), b, 0))
+      args->valid[i] = 0;
   }
 }
 
@@ -200,6 +299,7 @@ struct EmbreeAccel::Impl {
   std::vector<RTCScene> prototype_scenes;  // null for prototypes no instance uses
   std::vector<SphereData> sphere_data;
   std::vector<AnimatedInstanceData> animated_instances;
+  std::vector<QuadricData> quadric_data;
   std::string last_error;
   std::atomic<int64_t> bytes{0};
   double build_seconds = 0;
@@ -221,8 +321,14 @@ struct EmbreeAccel::Impl {
 
   // motion non-zero: two time steps, the second vertex buffer holding the vertices moved by it (Embree
   // interpolates linearly between them, which is the translation at every instant).
-  RTCGeometry triangle_geometry(const TriangleMesh& m, Vec3f motion = Vec3f(0.0f)) {
+  // alpha: the mesh has an alpha cut-out (filter functions installed; shapes without one pay nothing).
+  RTCGeometry triangle_geometry(const TriangleMesh& m, Vec3f motion = Vec3f(0.0f), bool alpha = false) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (alpha) {
+      rtcSetGeometryUserData(geom, const_cast<WorldGeometry*>(&geometry));
+      rtcSetGeometryIntersectFilterFunction(geom, triangle_alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(geom, triangle_alpha_filter);
+    }
     const size_t nv = m.p.size(), nt = m.triangle_count();
     const bool moving = motion.x != 0.0f || motion.y != 0.0f || motion.z != 0.0f;
     if (moving) {
@@ -252,13 +358,21 @@ struct EmbreeAccel::Impl {
 
   RTCGeometry animated_instance_geometry(const AnimatedTransform& motion, RTCScene proto, const Bounds3f& object) {
     animated_instances.push_back({&motion, proto, object, animated_time_steps(motion)});
+    return user_geometry(&animated_instances.back(), animated_instances.back().steps, animated_instance_bounds_cb,
+                         animated_instance_intersect_cb, animated_instance_occluded_cb);
+  }
+
+  // One primitive computed by callbacks on `data`; time_steps > 0 for a moving one (the shutter's ends, or more for
+  // an animated transform).
+  RTCGeometry user_geometry(void* data, unsigned time_steps, RTCBoundsFunction bounds,
+                            RTCIntersectFunctionN intersect, RTCOccludedFunctionN occluded) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryTimeStepCount(geom, animated_instances.back().steps);
+    if (time_steps > 0) rtcSetGeometryTimeStepCount(geom, time_steps);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
-    rtcSetGeometryUserData(geom, &animated_instances.back());
-    rtcSetGeometryBoundsFunction(geom, animated_instance_bounds_cb, nullptr);
-    rtcSetGeometryIntersectFunction(geom, animated_instance_intersect_cb);
-    rtcSetGeometryOccludedFunction(geom, animated_instance_occluded_cb);
+    rtcSetGeometryUserData(geom, data);
+    rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, intersect);
+    rtcSetGeometryOccludedFunction(geom, occluded);
     rtcCommitGeometry(geom);
     return geom;
   }
@@ -287,6 +401,7 @@ struct EmbreeAccel::Impl {
     scene = new_scene();
     sphere_data.reserve(geometry.spheres.size());  // callbacks keep pointers into it
     animated_instances.reserve(geometry.instances.size());
+    quadric_data.reserve(geometry.quadrics.size());
     prototype_scenes.assign(geometry.prototypes.size(), nullptr);
 
     const auto& shapes = geometry.shapes;
@@ -295,27 +410,27 @@ struct EmbreeAccel::Impl {
       RTCGeometry geom = nullptr;
       if (s.kind == ShapeKind::Mesh) {
         if (geometry.meshes[s.index].triangle_count() == 0) continue;
-        geom = triangle_geometry(geometry.meshes[s.index], s.motion);
+        geom = triangle_geometry(geometry.meshes[s.index], s.motion, s.alpha);
       } else if (s.kind == ShapeKind::Sphere) {
         const SphereShape& sph = geometry.spheres[s.index];
         const AnimatedTransform* animated = s.animated >= 0 ? &geometry.motions[size_t(s.animated)] : nullptr;
         const unsigned steps = animated ? animated_time_steps(*animated) : 2;
         sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse(), s.motion, animated, steps});
-        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        if (s.moving()) rtcSetGeometryTimeStepCount(geom, steps);
-        rtcSetGeometryUserPrimitiveCount(geom, 1);
-        rtcSetGeometryUserData(geom, &sphere_data.back());
-        rtcSetGeometryBoundsFunction(geom, sphere_bounds_cb, nullptr);
-        rtcSetGeometryIntersectFunction(geom, sphere_intersect_cb);
-        rtcSetGeometryOccludedFunction(geom, sphere_occluded_cb);
-        rtcCommitGeometry(geom);
+        geom = user_geometry(&sphere_data.back(), s.moving() ? steps : 0, sphere_bounds_cb, sphere_intersect_cb,
+                             sphere_occluded_cb);
+      } else if (s.kind == ShapeKind::Quadric) {
+        const QuadricShape& q = geometry.quadrics[s.index];
+        quadric_data.push_back({&geometry, id, &q, q.to_world.inverse(), s.motion, s.alpha});
+        geom = user_geometry(&quadric_data.back(), s.moving() ? 2 : 0, quadric_bounds_cb, quadric_intersect_cb,
+                             quadric_occluded_cb);
       } else {
         const MeshInstance& inst = geometry.instances[s.index];
         if (geometry.prototypes[inst.prototype].triangle_count() == 0) continue;
         RTCScene& proto = prototype_scenes[inst.prototype];
         if (!proto) {
           proto = new_scene();
-          RTCGeometry tri = triangle_geometry(geometry.prototypes[inst.prototype]);
+          // The instances of one prototype share its alpha (pbrt's object instances share their shapes').
+          RTCGeometry tri = triangle_geometry(geometry.prototypes[inst.prototype], Vec3f(0.0f), s.alpha);
           rtcAttachGeometryByID(proto, tri, 0);
           rtcReleaseGeometry(tri);
           rtcCommitScene(proto);
@@ -378,13 +493,14 @@ RTCRay to_rtc(const Ray& r) {
 
 bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
+  QueryContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.world_ray = &ray;
   RTCRayHit rh;
   rh.ray = to_rtc(ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &ctx, &rh);
+  rtcIntersect1(impl_->scene, &ctx.rtc, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   const WorldGeometry& g = impl_->geometry;
   hit.t = rh.ray.tfar;
@@ -394,6 +510,13 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
     hit.prim = 0;
     hit.u = hit.v = 0.0f;
     hit.ng = Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  } else if (s.kind == ShapeKind::Quadric) {
+    hit.prim = 0;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    Ray back = ray;  // a moving quadric is hit where it is at the ray's time
+    if (s.translates()) back.o -= s.offset_at(ray.time);
+    hit.ng = quadric_world_normal(g.quadrics[s.index], back, hit.t);
   } else {
     hit.prim = rh.hit.primID;
     hit.u = rh.hit.u;
@@ -406,10 +529,11 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
 
 bool EmbreeAccel::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
+  QueryContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.world_ray = &ray;
   RTCRay r = to_rtc(ray);
-  rtcOccluded1(impl_->scene, &ctx, &r);
+  rtcOccluded1(impl_->scene, &ctx.rtc, &r);
   return r.tfar == -kInfinity;
 }
 

@@ -52,6 +52,11 @@ SurfacePoint on_instance(const WorldGeometry& g, const MeshInstance& inst, const
           transformed_extent(to_world, p_object)};
 }
 
+SurfacePoint on_quadric(const QuadricShape& q, const Ray& ray, float t) {
+  const Vec3f p = quadric_object_point(q, ray, t);
+  return {q.to_world.point(p), unit_or_z(quadric_world_normal(q, ray, t)), transformed_extent(q.to_world, p)};
+}
+
 // The shape as it is at time 0, hit by `ray`.
 SurfacePoint static_surface_point(const WorldGeometry& g, const Shape& s, ShapeKind kind, const Ray& ray,
                                   const Hit& hit) {
@@ -68,6 +73,7 @@ SurfacePoint static_surface_point(const WorldGeometry& g, const Shape& s, ShapeK
               transformed_extent(inst.to_world, p_object)};
     }
     case ShapeKind::Sphere: return on_sphere(g.spheres[s.index], g.spheres[s.index].to_world, ray, hit.t);
+    case ShapeKind::Quadric: return on_quadric(g.quadrics[s.index], ray, hit.t);
   }
   return {};
 }
@@ -122,6 +128,21 @@ Vec3f sphere_world_normal(const SphereShape& s, const Transform& to_world, const
   Vec3f o = ray.o, d = ray.d;
   to_object_space(to_world.inverse(), o, d);
   return to_world.normal(o + d * t - s.center);
+}
+
+}  // namespace kiln
+
+namespace kiln {
+
+Vec3f quadric_object_point(const QuadricShape& q, const Ray& ray, float t) {
+  Vec3f o = ray.o, d = ray.d;
+  to_object_space(q.to_world.inverse(), o, d);
+  return q.quadric.project(o + d * t);
+}
+
+Vec3f quadric_world_normal(const QuadricShape& q, const Ray& ray, float t) {
+  const Vec3f n = q.to_world.normal(q.quadric.normal(quadric_object_point(q, ray, t)));
+  return q.flip ? -n : n;
 }
 
 }  // namespace kiln

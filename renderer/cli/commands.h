@@ -40,7 +40,7 @@ int cmd_render(const RenderArgs& args);
 struct InfoArgs {
   std::string scene;
   int subdivide = -1;
-  std::optional<std::string> rules;
+  RuleOverrides overrides;     // --rules and --light-sampler
   bool json = false;           // one JSON object instead of the text report
   bool allow_missing = false;  // missing PLY meshes and included files are reported and left out (surveys)
 };

@@ -79,6 +79,20 @@ size_t rendered_as_written(const std::map<std::string, size_t>& partial, const s
   return c.count > not_as_written ? c.count - not_as_written : 0;
 }
 
+// "light sampler: bvh (512 emitters, a 4-wide tree of 190 nodes, depth 6; 0 beside the tree; 42 KB, built in 0.3 ms)".
+void print_light_sampler(const WorldStats& ws) {
+  if (!ws.light_sampler_built) {
+    std::printf("light sampler: none (no lights)\n");
+    return;
+  }
+  const LightSamplerStats& l = ws.light_sampler;
+  std::printf("light sampler: %s", light_sampler_name(l.kind));
+  if (l.kind == LightSamplerKind::Bvh)
+    std::printf(" (%zu emitters, a 4-wide tree of %zu nodes, depth %d; %zu beside the tree; %.0f KB, built in %.2f ms)", l.emitters,
+                l.nodes, l.depth, l.infinite_lights, double(l.bytes) / 1024.0, l.build_seconds * 1e3);
+  std::printf("\n");
+}
+
 // The scene's identity as `kiln merge` checks it (renderer/render/scene_fingerprint.h): every file it covers.
 void print_identity(const SceneFingerprint& f) {
   std::printf("identity: %s (%zu files, %llu bytes)\n", f.hash.c_str(), f.files.size(), (unsigned long long)f.bytes);
@@ -100,12 +114,13 @@ Loaded load(const InfoArgs& args) {
   lo.allow_missing_files = args.allow_missing;
   Loaded l;
   l.scene = load_scene_fingerprinted(args.scene, lo, l.fingerprint);
-  l.overrides.rules = args.rules;
+  l.overrides = args.overrides;
   l.rules = resolve_rules(l.scene, l.overrides);
   WorldOptions wo;
   wo.build_accelerator = false;
   wo.ellipsoid_pdf = ellipsoid_pdf(l.rules, l.overrides);
   wo.env_map_sampling = env_map_sampling(l.rules, l.overrides);
+  wo.light_sampler = light_sampler_kind(l.rules, l.overrides);
   l.world = build_world(l.scene, wo);
   for (const CameraDesc& c : l.scene.cameras) Camera check(c);  // a lens that cannot focus fails here, not mid-render
   return l;
@@ -173,8 +188,8 @@ void print_text(const InfoArgs& args, const Loaded& l) {
     triangles += m.indices.size() / 3;
     if (m.emission) ++emissive;
   }
-  std::printf("meshes: %zu (%zu triangles, %zu emissive), spheres: %zu, instances: %zu\n", s.meshes.size(), triangles,
-              emissive, s.spheres.size(), s.instances.size());
+  std::printf("meshes: %zu (%zu triangles, %zu emissive), spheres: %zu, quadrics: %zu, instances: %zu\n",
+              s.meshes.size(), triangles, emissive, s.spheres.size(), s.quadrics.size(), s.instances.size());
   std::map<std::string, int> brdfs;
   for (const BrdfDesc& b : s.brdfs) ++brdfs[std::string(brdf_name(b.kind)) + (b.normalized ? " (normalized)" : "")];
   std::printf("materials: %zu", s.materials.size());
@@ -188,12 +203,17 @@ void print_text(const InfoArgs& args, const Loaded& l) {
   std::printf("\ncompiled:");
   for (const auto& [k, v] : ws.compiled_materials) std::printf(" %s x%zu", k.c_str(), v);
   std::printf(
-      "\nlights: ambient %s, point %zu, spot %zu, directional %zu, area %zu, mesh %zu, sphere %zu, env %zu, infinite %zu\n",
+      "\nlights: ambient %s, point %zu, spot %zu, directional %zu, area %zu, mesh %zu, sphere %zu, quadric %zu, env %zu, "
+      "infinite %zu\n",
       s.ambient_light.is_black() ? "off" : "on", ws.point_lights, ws.spot_lights, ws.directional_lights, ws.area_lights,
-      ws.mesh_lights, ws.sphere_lights, s.env_lights.size(), s.infinite_lights.size());
+      ws.mesh_lights, ws.sphere_lights, ws.quadric_lights, s.env_lights.size(), s.infinite_lights.size());
+  print_light_sampler(ws);
   std::printf("features: %s\n", describe_features(world.features).c_str());
-  std::printf("needs: spheres %s, instances %s, textures %s, cone sampler %s, time sample %s\n",
-              (world.features & kFeatureSpheres) ? "yes" : "no", (world.features & kFeatureInstances) ? "yes" : "no",
+  std::printf("needs: spheres %s, quadrics %s, instances %s, alpha test %s, textures %s, cone sampler %s, "
+              "time sample %s\n",
+              (world.features & kFeatureSpheres) ? "yes" : "no", (world.features & kFeatureQuadrics) ? "yes" : "no",
+              (world.features & kFeatureInstances) ? "yes" : "no",
+              ws.alpha_shapes > 0 ? ("yes (" + std::to_string(ws.alpha_shapes) + " shapes)").c_str() : "no",
               (world.features & kFeatureTextures) ? "yes" : "no", ws.cone_sampler_built ? "yes" : "no",
               ws.moving_shapes > 0 ? ("yes (" + std::to_string(ws.moving_shapes) + " moving shapes)").c_str() : "no");
   if (world.textures) {
@@ -232,13 +252,16 @@ void print_json(const InfoArgs& args, const Loaded& l) {
   j["meshes"] = s.meshes.size();
   j["triangles"] = triangles;
   j["spheres"] = s.spheres.size();
+  j["quadrics"] = s.quadrics.size();
   j["instances"] = s.instances.size();
   j["materials"] = s.materials.size();
   j["textures"] = s.textures.size();
   const WorldStats& ws = world.stats;
   j["lights"] = {{"point", ws.point_lights},   {"spot", ws.spot_lights},     {"directional", ws.directional_lights},
                  {"area", ws.area_lights},     {"mesh", ws.mesh_lights},     {"sphere", ws.sphere_lights},
-                 {"env", s.env_lights.size()}, {"infinite", s.infinite_lights.size()}};
+                 {"quadric", ws.quadric_lights}, {"env", s.env_lights.size()}, {"infinite", s.infinite_lights.size()}};
+  j["light_sampler"] = ws.light_sampler_built ? light_sampler_name(ws.light_sampler.kind) : "none";
+  j["alpha_shapes"] = ws.alpha_shapes;
   j["moving_shapes"] = ws.moving_shapes;
   j["features"] = describe_features(world.features);
   j["unsupported"] = s.unsupported;

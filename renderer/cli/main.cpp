@@ -17,6 +17,11 @@ struct JoinWorkerThreadsOnReturn {
   oneapi::tbb::task_scheduler_handle scheduler{oneapi::tbb::attach{}};
   ~JoinWorkerThreadsOnReturn() { (void)oneapi::tbb::finalize(scheduler, std::nothrow); }
 };
+
+constexpr const char* kLightSamplerHelp =
+    "How next event estimation chooses lights (Kiln's rules): bvh (the light hierarchy: by importance at the shading "
+    "point, mesh lights triangle by triangle), power (in proportion to power) or uniform. Default: bvh when the scene "
+    "has several lights with a position or a large emissive mesh, else power";
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -47,6 +52,8 @@ int main(int argc, char** argv) {
                      "Render with Kiln's path tracer and this strategy: uniform, cosine, brdf (no NEE), nee, mis (NEE + "
                      "BRDF, power heuristic); +rr turns roulette on (e.g. nee+rr)");
   render->add_option("--rr", ra.rules.russian_roulette, "Russian roulette on/off (true/false)");
+  render->add_option("--light-sampler", ra.rules.light_sampler, kLightSamplerHelp)
+      ->check(CLI::IsMember({"power", "uniform", "bvh"}));
   render->add_option("--course-roulette", ra.rules.course_roulette,
                      "How CENG795 RussianRoulette cameras are rendered: literal (default: the course's own coin flips, "
                      "so a render at the scene's spp looks like the course's; unbounded variance) or expected (the "
@@ -89,8 +96,10 @@ int main(int argc, char** argv) {
                                           "ignored (per pbrt directive), and which renderer parts it needs");
   info->add_option("scene", ia.scene, "Scene file")->required();
   info->add_option("--subdivide", ia.subdivide, "Loop-subdivide every mesh this many times");
-  info->add_option("--rules", ia.rules, "Show the integrators under these rules: kiln or course")
+  info->add_option("--rules", ia.overrides.rules, "Show the integrators under these rules: kiln or course")
       ->check(CLI::IsMember({"kiln", "course"}));
+  info->add_option("--light-sampler", ia.overrides.light_sampler, kLightSamplerHelp)
+      ->check(CLI::IsMember({"power", "uniform", "bvh"}));
   info->add_flag("--json", ia.json, "Print one JSON object (every directive's outcome, features, counts)");
   info->add_flag("--allow-missing", ia.allow_missing,
                  "pbrt: report missing PLY meshes and included files and leave them out instead of failing "
@@ -110,6 +119,8 @@ int main(int argc, char** argv) {
   converge->add_option("--camera", ca.camera, "Camera id (default: the scene's first camera)");
   converge->add_option("--reference", ca.reference, "Reference EXR at the rendered resolution (default: render one with mis)");
   converge->add_option("--strategies", ca.strategies, "Comma-separated: uniform, cosine, brdf, nee, mis, each optionally +rr")->capture_default_str();
+  converge->add_option("--light-samplers", ca.light_samplers, "Comma-separated light samplers (power, uniform, bvh): "
+                       "every strategy is measured with each, named STRATEGY/SAMPLER (default: the scene's own only)");
   converge->add_option("--budget", ca.budget_seconds,
                        "The study's total render seconds. Without --reference, a reference is rendered first within "
                        "half of it (as many spp as fit, at most 4096; its spp and estimated time are printed before "
@@ -149,6 +160,8 @@ int main(int argc, char** argv) {
   profile->add_flag("--json", pa.json, "Print the measurements as JSON instead of a table");
   profile->add_option("--rules", pa.rules, "Whose rules render the profiled camera: kiln or course (default: the scene's)")
       ->check(CLI::IsMember({"kiln", "course"}));
+  profile->add_option("--light-sampler", pa.light_sampler, kLightSamplerHelp)
+      ->check(CLI::IsMember({"power", "uniform", "bvh"}));
 
   std::string cb_scene;
   size_t cb_rays = 100000;

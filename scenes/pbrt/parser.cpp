@@ -3,6 +3,7 @@
 // scenes/pbrt/shapes.h and the camera by scenes/pbrt/camera.h.
 #include "scenes/pbrt/loader.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -55,6 +56,7 @@ struct Block {
 struct ObjectDef {
   std::vector<int> meshes;  // into SceneDesc::meshes (invisible prototypes)
   std::vector<SphereDesc> spheres;
+  std::vector<QuadricDesc> quadrics;
 };
 
 struct OpenFile {
@@ -668,6 +670,8 @@ class PbrtParser {
   }
 
   void finish() {
+    include_trace_.clear();  // every file is closed: errors from here on name their own file and line
+    builder_.resolve_mixes();
     const std::string end = "line " + std::to_string(root_end_line_);
     if (current_object_)
       throw Error(root_path_, end,
@@ -685,7 +689,8 @@ class PbrtParser {
     const std::string type = read_string(cur, line, "Shape");
     PbrtParams ps = read_params(cur, line, "Shape " + in_quotes(type), gs_.defaults.shape);
     require_world(line, "Shape");
-    const PbrtShapeContext ctx{diag_, [&](const std::string& name, int l) { return resolve(name, l, ps.context()); }};
+    const PbrtShapeContext ctx{diag_, [&](const std::string& name, int l) { return resolve(name, l, ps.context()); },
+                               [&](const PbrtParams& p) { return builder_.shape_alpha(p); }};
     PbrtShape s = make_pbrt_shape(type, ps, ctx);
     diag_.report_unused(ps);
     if (s.empty()) return;
@@ -720,9 +725,26 @@ class PbrtParser {
       scene_.meshes.push_back(std::move(m));
       return;
     }
+    if (s.quadric) {
+      if (motion) unmoved_quadric(line, ps.context());
+      QuadricDesc& q = *s.quadric;
+      q.material = material;
+      q.to_world = to_world;
+      q.flip = flipped;
+      if (light) {
+        q.emission = light->radiance;
+        q.two_sided_emission = light->two_sided;
+      }
+      (current_object_ ? objects_[*current_object_].quadrics : scene_.quadrics).push_back(q);
+      return;
+    }
     SphereDesc sp = *s.sphere;
     sp.material = material;
     sp.to_world = to_world;
+    if (motion && sp.alpha.cuts()) {  // built as a quadric sphere (pbrt's (u, v) for the alpha texture)
+      unmoved_quadric(line, ps.context());
+      motion.reset();
+    }
     sp.to_world_motion = motion;
     if (!to_world.invertible()) fail(line, ps.context(), "the transform is singular: a sphere needs its inverse");
     if (light) {
@@ -758,6 +780,15 @@ class PbrtParser {
       return std::nullopt;
     }
     return motion_of(gs_.ctm[0], gs_.ctm[1], line, context);
+  }
+
+  // Disks, cylinders, partial spheres and spheres with an alpha cut-out are quadric user geometry, which moves by
+  // translation (MotionBlur) only: under an animated transform it stays at its start.
+  void unmoved_quadric(int line, const std::string& context) {
+    warn(line, context,
+         "the transform moves over the shutter, but Kiln does not move disks, cylinders, partial spheres or spheres "
+         "with \"alpha\" by an animated transform; it is rendered at its start transform");
+    diag_.unsupported("moving quadrics (pbrt ActiveTransform on a disk, cylinder, partial or alpha-cut sphere)");
   }
 
   // A moving mesh is rendered as an instance of its object-space self whose transform moves.
@@ -825,18 +856,29 @@ class PbrtParser {
       inst.material = base.material;
       scene_.instances.push_back(inst);
     }
+    const bool cut_sphere = std::any_of(it->second.spheres.begin(), it->second.spheres.end(),
+                                        [](const SphereDesc& s) { return s.alpha.cuts(); });
+    if ((cut_sphere || !it->second.quadrics.empty()) && !same(gs_.ctm[0], gs_.ctm[1]))
+      unmoved_quadric(line, "ObjectInstance");
     for (SphereDesc s : it->second.spheres) {
-      s.to_world_motion = moved(s.to_world);
+      if (!s.alpha.cuts()) s.to_world_motion = moved(s.to_world);
       s.to_world = placement * s.to_world;
       s.name = label + " " + s.name;
       scene_.spheres.push_back(s);
+    }
+    for (QuadricDesc q : it->second.quadrics) {
+      q.to_world = placement * q.to_world;
+      q.name = label + " " + q.name;
+      scene_.quadrics.push_back(q);
     }
   }
 
   // ---- state ----
 
   SceneDesc scene_;
-  PbrtBuilder builder_{scene_};
+  PbrtBuilder builder_{scene_, [this](const std::string& name, const PbrtParams& ps) {
+                         return resolve(name, ps.line(), ps.context());
+                       }};
   PbrtDiagnostics& diag_ = builder_.diagnostics();
   std::string root_path_, root_dir_, include_trace_;
   std::vector<OpenFile> files_;

@@ -145,6 +145,45 @@ TEST_F(CliBadInput, PbrtSingularTransformWhereAnInverseIsNeeded) {
   expect_bad_input(bad_pbrt("singular_sphere.pbrt"), "line 7 (Shape \"sphere\"): the transform is singular");
 }
 
+// A pbrt scene of one sphere whose world ends with `world` (from line 6 on).
+std::string pbrt_scene(const std::string& world) {
+  return "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
+         "\"integer yresolution\" 8\nWorldBegin\nShape \"sphere\"\n" +
+         world;
+}
+
+TEST_F(CliBadInput, PbrtMissingOrUnreadableEnvironmentMap) {
+  expect_bad_input(write_file(dir_, "env_missing.pbrt",
+                              pbrt_scene("LightSource \"infinite\" \"string filename\" \"sky_absent.exr\"\n")),
+                   "line 6 (LightSource \"infinite\"): cannot find \"sky_absent.exr\"");
+  write_file(dir_, "junk.exr", "not an image");
+  expect_bad_input(write_file(dir_, "env_junk.pbrt",
+                              pbrt_scene("LightSource \"infinite\" \"string filename\" \"junk.exr\"\n")),
+                   "line 6 (LightSource \"infinite\"): environment map");
+}
+
+TEST_F(CliBadInput, PbrtEnvironmentMapNeitherSquareNorTwoToOne) {
+  Image wide(12, 4);
+  write_exr(dir_ + "/wide.exr", wide, {}, {});
+  expect_bad_input(write_file(dir_, "env_wide.pbrt",
+                              pbrt_scene("LightSource \"infinite\" \"string filename\" \"wide.exr\"\n")),
+                   "line 6 (LightSource \"infinite\"): environment map '");
+  const RunResult r = run_kiln("render " + dir_ + "/env_wide.pbrt -o " + out_ + " -q");
+  EXPECT_NE(r.output.find("is 12 x 4: an equal-area map must be square"), std::string::npos) << r.output;
+}
+
+TEST_F(CliBadInput, PbrtAlphaNamingASpectrumTexture) {
+  expect_bad_input(write_file(dir_, "alpha_spectrum.pbrt",
+                              pbrt_scene("Texture \"c\" \"spectrum\" \"constant\" \"rgb value\" [1 1 1]\n"
+                                         "Shape \"disk\" \"texture alpha\" \"c\"\n")),
+                   "line 7 (Shape \"disk\"): \"alpha\" names texture \"c\", a spectrum texture");
+}
+
+TEST_F(CliBadInput, PbrtNegativeRadius) {
+  expect_bad_input(write_file(dir_, "negative_radius.pbrt", pbrt_scene("Shape \"cylinder\" \"float radius\" -2\n")),
+                   "line 6 (Shape \"cylinder\"): \"radius\" must be positive");
+}
+
 TEST_F(CliBadInput, PbrtWrongParameterType) {
   expect_bad_input(bad_pbrt("wrong_parameter_type.pbrt"),
                    "line 2 (Camera \"perspective\"): parameter \"fov\" is declared \"string\"");
@@ -245,13 +284,13 @@ TEST(Cli, PbrtSceneRendersAndEveryCommandReadsIt) {
   const RunResult info = run_kiln("info " + data + "unsupported.pbrt");
   EXPECT_EQ(info.exit_code, 0) << info.output;
   // One self-contained line per directive not rendered as written: outcome, file:line, directive, [feature].
-  EXPECT_NE(info.output.find("\nignored: " + data + "unsupported.pbrt:15: Shape \"disk\" [pbrt shape \"disk\"]: "),
+  EXPECT_NE(info.output.find("\nignored: " + data + "unsupported.pbrt:15: Shape \"curve\" [pbrt shape \"curve\"]: "),
             std::string::npos)
       << info.output;
   EXPECT_NE(info.output.find("\nsubstituted: " + data + "unsupported.pbrt:14: Material \"hair\" [pbrt material"),
             std::string::npos)
       << info.output;
-  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"disk\" (1 directive)"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"curve\" (1 directive)"), std::string::npos) << info.output;
   const RunResult all = run_kiln("info " + data + "all_directives.pbrt");
   EXPECT_NE(all.output.find("infinite 1"), std::string::npos) << all.output;
 
@@ -274,14 +313,14 @@ TEST(Cli, InfoJsonListsWhatEachPbrtDirectiveBecame) {
       if (n["line"] == line && n["directive"] == directive && n["outcome"] != "remark") return n["outcome"].get<std::string>();
     return std::string("none");
   };
-  EXPECT_EQ(outcome_at(15, "Shape \"disk\""), "ignored");
+  EXPECT_EQ(outcome_at(15, "Shape \"curve\""), "ignored");
   EXPECT_EQ(outcome_at(19, "LightSource \"goniometric\""), "ignored");
   EXPECT_EQ(outcome_at(14, "Material \"hair\""), "substituted");
   EXPECT_EQ(outcome_at(6, "PixelFilter \"sinc\""), "substituted");
   EXPECT_EQ(outcome_at(13, "Shape \"trianglemesh\""), "ignored") << "its unused parameter";
-  EXPECT_EQ(j["directives"]["Shape \"sphere\""]["count"], 3);
-  EXPECT_EQ(j["directives"]["Shape \"sphere\""]["rendered_as_written"], 2) << "the partial sphere is not";
-  EXPECT_EQ(j["directives"]["Shape \"disk\""]["first"], file + ":15");
+  EXPECT_EQ(j["directives"]["Shape \"sphere\""]["count"], 2);
+  EXPECT_EQ(j["directives"]["Shape \"sphere\""]["rendered_as_written"], 2) << "the sphere light and the moving sphere";
+  EXPECT_EQ(j["directives"]["Shape \"curve\""]["first"], file + ":15");
   // Every warning is some directive's note (nothing is reported only as free text), and every feature Kiln does not
   // render as written is some directive's substituted or ignored note.
   for (const auto& w : j["warnings"]) {

@@ -90,6 +90,25 @@ AttributeEnd
   }
 }
 
+// Quadrics (here a disk of radius 0.5 about the origin) do not move by an animated transform: the loader says so,
+// and both accelerators trace the disk at its start transform at every time, not half moved.
+TEST(PbrtMotion, AnimatedDiskIsWarnedAndStaysAtItsStart) {
+  const SceneDesc s = load_scene(write_scene("disk", std::string(kTopView) + R"(AttributeBegin
+ActiveTransform EndTime
+Translate 0.5 0 0
+ActiveTransform All
+Shape "disk" "float radius" 0.5
+AttributeEnd
+)"));
+  bool warned = false;
+  for (const std::string& w : s.warnings) warned |= w.find("does not move disks") != std::string::npos;
+  EXPECT_TRUE(warned);
+  const Camera cam(s.cameras.at(0));
+  const auto covered = [](double x, double y, double) { return 0.5 - std::hypot(x, y); };
+  for (AccelKind accel : {AccelKind::Embree, AccelKind::Bvh})
+    expect_hits_match(*world_for(s, accel), cam, covered, accel == AccelKind::Embree ? "embree" : "bvh");
+}
+
 // A sphere of radius 0.3 at (-0.5, 0) moving to (0.5, 0.2) while scaled by 2: at time t its centre and radius are
 // the linear blends, and it covers (x, y) within that radius of the centre.
 TEST(PbrtMotion, MovingGrowingSphereCoversWhatTheBlendSays) {
