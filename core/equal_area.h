@@ -25,6 +25,26 @@ inline Vec3f equal_area_square_to_sphere(Vec2f p) {
   return {std::copysign(std::cos(phi), a) * ring, std::copysign(std::sin(phi), b) * ring, z};
 }
 
+// A point just outside [0, 1]^2 to the point of the square it continues into across the folded edge (the
+// continuous counterpart of wrap_octahedral, for lookups such as a spherical camera's screen window).
+inline Vec2f wrap_equal_area_square(Vec2f p) {
+  if (p.x < 0.0f) {
+    p.x = -p.x;
+    p.y = 1.0f - p.y;
+  } else if (p.x > 1.0f) {
+    p.x = 2.0f - p.x;
+    p.y = 1.0f - p.y;
+  }
+  if (p.y < 0.0f) {
+    p.x = 1.0f - p.x;
+    p.y = -p.y;
+  } else if (p.y > 1.0f) {
+    p.x = 1.0f - p.x;
+    p.y = 2.0f - p.y;
+  }
+  return p;
+}
+
 // d must be of unit length.
 inline Vec2f equal_area_sphere_to_square(Vec3f d) {
   const float x = std::abs(d.x), y = std::abs(d.y), z = std::abs(d.z);

@@ -1,5 +1,8 @@
 #include "core/transform.h"
 
+#include <cmath>
+#include <limits>
+
 #include "core/error.h"
 
 namespace kiln {
@@ -65,6 +68,20 @@ Transform Transform::from_matrix(const Mat4& m) {
   auto inv = m.inverse();
   if (!inv) throw Error("transformation matrix is singular (not invertible)");
   return {m, *inv};
+}
+
+Transform Transform::from_matrix_maybe_singular(const Mat4& m) {
+  if (auto inv = m.inverse()) return {m, *inv};
+  Mat4 nan;
+  for (auto& row : nan.m) row.fill(std::numeric_limits<float>::quiet_NaN());
+  return {m, nan};
+}
+
+bool Transform::invertible() const {
+  for (const auto& row : inv_.m)
+    for (float x : row)
+      if (!std::isfinite(x)) return false;
+  return true;
 }
 
 Transform Transform::translate(Vec3f d) {

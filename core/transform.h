@@ -25,6 +25,9 @@ class Transform {
   Transform(const Mat4& m, const Mat4& inv) : m_(m), inv_(inv) {}
   // Throws kiln::Error when m is singular.
   static Transform from_matrix(const Mat4& m);
+  // As pbrt keeps them: a singular m gets an inverse of NaNs (invertible() is then false, and so is that of every
+  // product with it), for transforms that only ever map points forward (a mesh flattened onto a plane).
+  static Transform from_matrix_maybe_singular(const Mat4& m);
   static Transform translate(Vec3f d);
   static Transform scale(Vec3f s);
   // Rotation by angle degrees about axis (normalised here), right-hand rule.
@@ -35,6 +38,8 @@ class Transform {
   Transform inverse() const { return {inv_, m_}; }
   Transform operator*(const Transform& b) const { return {m_ * b.m_, b.inv_ * inv_}; }
   bool is_identity() const { return m_.is_identity(); }
+  // False for a singular transform (from_matrix_maybe_singular): its inverse, normal() and inverse() are NaN.
+  bool invertible() const;
   // True when the transform flips orientation (negative determinant of the linear part).
   bool swaps_handedness() const;
 

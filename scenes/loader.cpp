@@ -33,7 +33,7 @@ SceneDesc load_scene(const std::string& path, const LoadOptions& options) {
   } else if (ext == ".obj") {
     scene = make_mesh_scene(load_obj(path), path);
   } else if (ext == ".pbrt" || ext == ".pbrt.gz") {
-    scene = load_pbrt(path);
+    scene = load_pbrt(path, PbrtOptions{options.allow_missing_files});
   } else {
     throw Error(path, "", "unknown scene format '" + ext + "' (expected .xml, .json, .pbrt, .ply or .obj)");
   }

@@ -12,6 +12,9 @@ struct LoadOptions {
   int subdivide = -1;
   // Leave MeshDesc::subdivide set but do not subdivide yet (kiln profile times subdivision on its own).
   bool defer_subdivision = false;
+  // pbrt: missing PLY meshes and included files are reported and left out instead of failing the load
+  // (scenes/pbrt/loader.h PbrtOptions).
+  bool allow_missing_files = false;
 };
 
 // Throws kiln::Error naming the file, element or line, and what is wrong.

@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,6 +47,40 @@ struct PathTracingFlags {
   bool russian_roulette = false;
 };
 
+// How a camera maps the film to rays (pbrt-v4's camera types; CENG795 and CS171 cameras are Perspective). Camera
+// space has x along the image's right, y along its up and z forward (-gaze).
+enum class CameraProjection { Perspective, Orthographic, Spherical, Realistic };
+// A spherical camera's film: pbrt's equal-area square (Clarberg's octahedral mapping) or latitude-longitude.
+enum class SphericalMapping { EqualArea, Equirectangular };
+
+// One interface of a realistic camera's lens system, in metres, listed from the scene side to the film side as
+// pbrt's lens files list them: curvature radius (0: the aperture stop), thickness to the next interface, index of
+// refraction behind it (0 reads as air), aperture radius.
+struct LensInterfaceDesc {
+  float curvature_radius = 0, thickness = 0, eta = 0, aperture_radius = 0;
+};
+struct LensSystemDesc {
+  std::string file;                          // the lens file
+  std::string directive;                     // where the camera is written, for messages (file: line (directive))
+  std::vector<LensInterfaceDesc> interfaces;  // the stop's aperture radius is already the requested aperture's
+  float focus_distance = 10.0f;               // metres, to the plane in focus
+  float film_diagonal = 0.035f;               // metres (pbrt Film "diagonal", in mm in the file)
+};
+
+// A transform that moves over the shutter: `end` at end_time, the description's own transform at start_time, pbrt's
+// interpolation between them (core/animated_transform.h). Times are fractions of the shutter interval (0 when it
+// opens, 1 when it closes) and may lie outside it.
+struct TransformMotionDesc {
+  Transform end;
+  float start_time = 0.0f, end_time = 1.0f;
+};
+
+// Where a moving camera is at the end of its motion (CameraDesc::motion); times as in TransformMotionDesc.
+struct CameraMotionDesc {
+  Vec3f position{0, 0, 0}, gaze{0, 0, -1}, up{0, 1, 0};
+  float start_time = 0.0f, end_time = 1.0f;
+};
+
 struct CameraDesc {
   std::string id;
   Vec3f position{0, 0, 0};
@@ -68,6 +103,20 @@ struct CameraDesc {
   bool renderer_explicit = false;  // the scene named a renderer (else Kiln's default applies)
   PathTracingFlags pt;
   std::optional<PixelFilterDesc> filter;  // the scene's pixel filter (pbrt PixelFilter); else the rules' default
+  CameraProjection projection = CameraProjection::Perspective;
+  // Orthographic: near_plane is the screen window in camera-space units (no NearDistance, rays along the gaze).
+  SphericalMapping spherical_mapping = SphericalMapping::EqualArea;
+  std::optional<LensSystemDesc> lens;  // Realistic
+  // The film the image is cut from when it is cropped (pbrt cropwindow): its full size and the crop's corner.
+  // Spherical and realistic cameras map the whole film; the perspective ones fold the crop into near_plane.
+  int full_width = 0, full_height = 0;  // 0: width, height
+  int crop_x = 0, crop_y = 0;
+  // Write Kiln's AOV layers with the image (pbrt Film "gbuffer") unless the command line names its own.
+  bool aov_layers = false;
+  // Every sample's radiance is multiplied by this (pbrt's imaging ratio: Film "iso" / 100 times the exposure time).
+  float film_scale = 1.0f;
+  // The camera moves over the shutter: (position, gaze, up) hold at the start time, `motion` at the end time.
+  std::optional<CameraMotionDesc> motion;
 };
 
 enum class BrdfKind { OriginalPhong, ModifiedPhong, OriginalBlinnPhong, ModifiedBlinnPhong, TorranceSparrow, Lambert };
@@ -233,6 +282,7 @@ struct SphereDesc {
   int material = -1;
   std::optional<Rgb> emission;  // LightSphere radiance
   Vec3f motion{0, 0, 0};        // MotionBlur (see MeshDesc::motion)
+  std::optional<TransformMotionDesc> to_world_motion;  // to_world moves over the shutter (pbrt ActiveTransform)
   std::vector<int> textures;    // indices into SceneDesc::textures
   ShapeAlphaDesc alpha;         // pbrt "alpha": the sphere is then built as a quadric (pbrt's (u, v))
 };
@@ -259,6 +309,7 @@ struct InstanceDesc {
   int material = -1;
   std::optional<bool> smooth;
   Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
+  std::optional<TransformMotionDesc> to_world_motion;  // to_world moves over the shutter (pbrt ActiveTransform)
   std::vector<int> textures;  // indices into SceneDesc::textures; empty: the base mesh's
 };
 
@@ -301,6 +352,27 @@ struct EnvLightDesc {
 // Constant radiance arriving from every direction (pbrt "infinite" light with "L"), seen by rays that escape.
 struct InfiniteLightDesc { Rgb radiance; };
 
+// What a loader made of one directive of the file (pbrt), for `kiln info`: rendered as written, rendered with a
+// stand-in (a default material, a different filter, the start of a motion), or left out (a shape, a light, a
+// parameter). Remarks change nothing in the image (a deprecated spelling, a replaced sampler).
+enum class LoadOutcome { Rendered, Substituted, Ignored, Remark };
+struct LoadNote {
+  std::string file;
+  int line = 0;               // of the note (an unused parameter's own line)
+  std::string directive;      // e.g. Shape "disk", MakeNamedMaterial "floor"
+  std::string kind;           // the key of SceneDesc::directives it counts under: Shape "disk", MakeNamedMaterial
+  int directive_line = 0;     // where the directive starts (one directive may have several notes)
+  LoadOutcome outcome = LoadOutcome::Remark;
+  std::string feature;    // Substituted / Ignored: what is not rendered as written (as listed in SceneDesc::unsupported)
+  std::string message;
+};
+// How many directives of one kind (e.g. Shape "trianglemesh") the file has, and where the first one is.
+struct DirectiveCount {
+  size_t count = 0;
+  std::string first_file;
+  int first_line = 0;
+};
+
 struct SceneDesc {
   std::string source_path;  // file it was loaded from
   std::string format;       // "ceng795-xml", "cs171-json", "ply", "obj": for messages only, never for decisions
@@ -338,6 +410,10 @@ struct SceneDesc {
   // reported by `kiln info` and warned about once at render time.
   std::vector<std::string> unsupported;
   std::vector<std::string> warnings;
+  // pbrt: every directive by kind, and a note for each one not rendered as written (and each remark), in file
+  // order. A directive without a Substituted or Ignored note is rendered as written.
+  std::map<std::string, DirectiveCount> directives;
+  std::vector<LoadNote> notes;
 };
 
 }  // namespace kiln

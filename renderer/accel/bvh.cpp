@@ -467,11 +467,14 @@ struct Bvh::Impl {
   }
 
   // A sphere, a quadric, an instance (whose prototype tree is traversed with the ray in object space) or a moving
-  // mesh (its tree traversed with the ray moved back by the mesh's offset at the ray's time).
+  // mesh (its tree traversed with the ray moved back by the mesh's offset at the ray's time). An animated sphere or
+  // instance takes the ray into its space at the ray's time.
   template <bool kAny, bool kAlpha>
   bool other_prim(const PrimRef ref, const TravRay& r, float& tmax, Closest& best) const {
     const Shape& shape = g.shapes[ref.shape];
-    const Vec3f origin = shape.moving() ? r.o - shape.offset_at(r.time) : r.o;
+    if (shape.animated >= 0) [[unlikely]]
+      return animated_prim<kAny, kAlpha>(ref, r, tmax, best);
+    const Vec3f origin = shape.translates() ? r.o - shape.offset_at(r.time) : r.o;
     if (ref_kind(ref) == kKindMovingMesh) {
       const TravRay back(Ray{origin, r.d, r.tmin, tmax, r.time}, r.world);
       return traverse<kAny, kAlpha>(moving_meshes[ref_index(ref)], back, tmax, best, ref.shape);
@@ -493,6 +496,24 @@ struct Bvh::Impl {
     to_object_space(instance_to_object[ii], o, d);
     const TravRay obj(Ray{o, d, r.tmin, tmax, r.time}, r.world);
     return traverse<kAny, kAlpha>(prototypes[g.instances[ii].prototype], obj, tmax, best, ref.shape);
+  }
+
+  template <bool kAny, bool kAlpha>
+  bool animated_prim(const PrimRef ref, const TravRay& r, float& tmax, Closest& best) const {
+    const Shape& shape = g.shapes[ref.shape];
+    const Transform to_object = g.motions[size_t(shape.animated)].at(r.time).inverse();
+    Vec3f o = r.o, d = r.d;
+    to_object_space(to_object, o, d);
+    if (ref_kind(ref) == kKindSphere) {
+      const SphereShape& s = g.spheres[ref_index(ref)];
+      const auto t = intersect_sphere(o, d, s.center, s.radius, r.tmin, tmax);
+      if (!t) return false;
+      tmax = *t;
+      if constexpr (!kAny) best = {*t, ref.shape, 0, 0.0f, 0.0f};
+      return true;
+    }
+    const TravRay obj(Ray{o, d, r.tmin, tmax, r.time}, r.world);
+    return traverse<kAny, kAlpha>(prototypes[g.instances[ref_index(ref)].prototype], obj, tmax, best, ref.shape);
   }
 };
 
@@ -518,20 +539,21 @@ bool Bvh::intersect(const Ray& ray, Hit& hit) const {
     hit.prim = 0;
     hit.u = hit.v = 0.0f;
     Ray back = ray;  // a moving sphere is hit where it is at the ray's time
-    if (s.moving()) back.o -= s.offset_at(ray.time);
-    hit.ng = sphere_world_normal(g.spheres[s.index], back, best.t);
+    if (s.translates()) back.o -= s.offset_at(ray.time);
+    hit.ng = s.animated >= 0 ? sphere_world_normal(g.spheres[s.index], shape_to_world(g, s, ray.time), ray, best.t)
+                             : sphere_world_normal(g.spheres[s.index], back, best.t);
   } else if (s.kind == ShapeKind::Quadric) {
     hit.prim = 0;
     hit.u = best.b1;
     hit.v = best.b2;
     Ray back = ray;
-    if (s.moving()) back.o -= s.offset_at(ray.time);
+    if (s.translates()) back.o -= s.offset_at(ray.time);
     hit.ng = quadric_world_normal(g.quadrics[s.index], back, best.t);
   } else {
     hit.prim = best.prim;
     hit.u = best.b1;
     hit.v = best.b2;
-    hit.ng = triangle_world_normal(g, best.shape, best.prim);
+    hit.ng = triangle_world_normal(g, best.shape, best.prim, ray.time);
   }
   return true;
 }

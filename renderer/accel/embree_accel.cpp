@@ -2,7 +2,9 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <cstring>
 #include <string>
@@ -20,14 +22,34 @@
 namespace kiln {
 namespace {
 
+// Time steps of an animated shape's user geometry: Embree interpolates the bounds of neighbouring steps linearly,
+// so each step's box holds the shape over the steps on either side (AnimatedTransform::motion_bounds), and a
+// rotation gets a step per this angle so that the boxes stay tight.
+constexpr float kAnimatedStepTurn = 3.14159265f / 16.0f;
+constexpr unsigned kMaxTimeSteps = 129;  // Embree's limit
+
+unsigned animated_time_steps(const AnimatedTransform& m) {
+  return std::min(kMaxTimeSteps, 2u + unsigned(std::ceil(m.rotation_angle() / kAnimatedStepTurn)));
+}
+
+// A box holding an animated shape over the time steps next to `step` of `steps`.
+RTCBounds animated_step_bounds(const AnimatedTransform& m, const Bounds3f& object, unsigned step, unsigned steps) {
+  const float h = 1.0f / float(steps - 1), t = float(step) * h;
+  const Bounds3f b = m.motion_bounds(object, t - h, t + h);
+  return RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
+}
+
 // What a sphere's user-geometry callbacks need; the transform is skipped for plain spheres.
 // A moving sphere (motion non-zero) has two time steps; the callbacks move the ray back by the sphere's offset at
-// the ray's time instead of moving the sphere.
+// the ray's time instead of moving the sphere. An animated one (pbrt's interpolated transform) takes the ray into
+// its space at the ray's time.
 struct SphereData {
   const SphereShape* shape = nullptr;
   bool has_transform = false;
   Transform to_object;
   Vec3f motion{0.0f};
+  const AnimatedTransform* animated = nullptr;
+  unsigned steps = 2;
 };
 
 // A user geometry's bounds at a time step: its time-0 bounds moved by its motion (time steps 0 and 1 are the
@@ -41,11 +63,19 @@ void store_bounds(const RTCBoundsFunctionArguments* args, Bounds3f b, Vec3f moti
 
 void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
   const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
+  if (s->animated) {
+    const Bounds3f object(s->shape->center - Vec3f(s->shape->radius), s->shape->center + Vec3f(s->shape->radius));
+    *args->bounds_o = animated_step_bounds(*s->animated, object, args->timeStep, s->steps);
+    return;
+  }
   store_bounds(args, sphere_world_bounds(*s->shape), s->motion);
 }
 
-inline void sphere_object_ray(const SphereData& s, Vec3f& o, Vec3f& d) {
-  if (s.has_transform) to_object_space(s.to_object, o, d);
+inline void sphere_object_ray(const SphereData& s, Vec3f& o, Vec3f& d, float time) {
+  if (s.animated)
+    to_object_space(s.animated->at(time).inverse(), o, d);
+  else if (s.has_transform)
+    to_object_space(s.to_object, o, d);
 }
 
 void sphere_intersect_cb(const RTCIntersectFunctionNArguments* args) {
@@ -59,11 +89,13 @@ void sphere_intersect_cb(const RTCIntersectFunctionNArguments* args) {
                      s->motion * RTCRayN_time(ray, args->N, i);
     const Vec3f wd(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
     Vec3f o = wo, d = wd;
-    sphere_object_ray(*s, o, d);
+    const float time = RTCRayN_time(ray, args->N, i);
+    sphere_object_ray(*s, o, d, time);
     const auto t = intersect_sphere(o, d, s->shape->center, s->shape->radius, RTCRayN_tnear(ray, args->N, i),
                                     RTCRayN_tfar(ray, args->N, i));
     if (!t) continue;
-    const Vec3f n = sphere_world_normal(*s->shape, Ray{wo, wd}, *t);
+    const Vec3f n = s->animated ? sphere_world_normal(*s->shape, s->animated->at(time), Ray{wo, wd}, *t)
+                                : sphere_world_normal(*s->shape, Ray{wo, wd}, *t);
     RTCRayN_tfar(ray, args->N, i) = *t;
     RTCHitN_Ng_x(hit, args->N, i) = n.x;
     RTCHitN_Ng_y(hit, args->N, i) = n.y;
@@ -84,7 +116,7 @@ void sphere_occluded_cb(const RTCOccludedFunctionNArguments* args) {
     Vec3f o = Vec3f(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i)) -
               s->motion * RTCRayN_time(ray, args->N, i);
     Vec3f d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
-    sphere_object_ray(*s, o, d);
+    sphere_object_ray(*s, o, d, RTCRayN_time(ray, args->N, i));
     if (intersect_sphere(o, d, s->shape->center, s->shape->radius, RTCRayN_tnear(ray, args->N, i),
                          RTCRayN_tfar(ray, args->N, i)))
       RTCRayN_tfar(ray, args->N, i) = -kInfinity;  // Embree's "occluded" marker
@@ -101,6 +133,77 @@ struct QueryContext {
 
 const Ray& world_ray_of(const RTCIntersectContext* context) {
   return *reinterpret_cast<const QueryContext*>(context)->world_ray;
+}
+
+// An animated instance (pbrt's interpolated transform) as user geometry around its prototype's scene: the ray goes
+// into object space at its own time and is traced there, so Embree and the in-house BVH move it by the same
+// transform (Embree's own instance motion would interpolate differently).
+struct AnimatedInstanceData {
+  const AnimatedTransform* motion = nullptr;
+  RTCScene prototype = nullptr;
+  Bounds3f object_bounds;
+  unsigned steps = 2;
+};
+
+void animated_instance_bounds_cb(const RTCBoundsFunctionArguments* args) {
+  const auto* a = static_cast<const AnimatedInstanceData*>(args->geometryUserPtr);
+  *args->bounds_o = animated_step_bounds(*a->motion, a->object_bounds, args->timeStep, a->steps);
+}
+
+// The ray of lane i in the instance's object space (tfar as it stands: nearer hits found so far still count).
+RTCRayHit object_ray(const AnimatedInstanceData& a, RTCRayN* ray, unsigned n, unsigned i) {
+  Vec3f o(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i));
+  Vec3f d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
+  const float time = RTCRayN_time(ray, n, i);
+  to_object_space(a.motion->at(time).inverse(), o, d);
+  RTCRayHit rh{};
+  rh.ray = {o.x, o.y, o.z, RTCRayN_tnear(ray, n, i), d.x, d.y, d.z, time, RTCRayN_tfar(ray, n, i), 0xffffffffu, 0, 0};
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+// The context of the query inside the prototype: the caller's world-space ray for alpha, and the instance's shape as
+// instID (Embree reports it with the prototype's hits, as for its own instances), so alpha asks about the instance.
+QueryContext prototype_context(const RTCIntersectContext* outer, unsigned instance_shape) {
+  QueryContext c{};
+  rtcInitIntersectContext(&c.rtc);
+  c.rtc.instID[0] = instance_shape;
+  c.world_ray = &world_ray_of(outer);
+  return c;
+}
+
+void animated_instance_intersect_cb(const RTCIntersectFunctionNArguments* args) {
+  const auto* a = static_cast<const AnimatedInstanceData*>(args->geometryUserPtr);
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    alignas(16) RTCRayHit rh = object_ray(*a, ray, args->N, i);
+    QueryContext ctx = prototype_context(args->context, args->geomID);
+    rtcIntersect1(a->prototype, &ctx.rtc, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    RTCRayN_tfar(ray, args->N, i) = rh.ray.tfar;
+    RTCHitN_Ng_x(hit, args->N, i) = rh.hit.Ng_x;
+    RTCHitN_Ng_y(hit, args->N, i) = rh.hit.Ng_y;
+    RTCHitN_Ng_z(hit, args->N, i) = rh.hit.Ng_z;
+    RTCHitN_u(hit, args->N, i) = rh.hit.u;
+    RTCHitN_v(hit, args->N, i) = rh.hit.v;
+    RTCHitN_primID(hit, args->N, i) = rh.hit.primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
+    RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+  }
+}
+
+void animated_instance_occluded_cb(const RTCOccludedFunctionNArguments* args) {
+  const auto* a = static_cast<const AnimatedInstanceData*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    alignas(16) RTCRayHit rh = object_ray(*a, args->ray, args->N, i);
+    QueryContext ctx = prototype_context(args->context, args->geomID);
+    rtcOccluded1(a->prototype, &ctx.rtc, &rh.ray);
+    if (rh.ray.tfar == -kInfinity) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+  }
 }
 
 // What a quadric's user-geometry callbacks need (as SphereData).
@@ -195,6 +298,7 @@ struct EmbreeAccel::Impl {
   RTCScene scene = nullptr;
   std::vector<RTCScene> prototype_scenes;  // null for prototypes no instance uses
   std::vector<SphereData> sphere_data;
+  std::vector<AnimatedInstanceData> animated_instances;
   std::vector<QuadricData> quadric_data;
   std::string last_error;
   std::atomic<int64_t> bytes{0};
@@ -252,11 +356,18 @@ struct EmbreeAccel::Impl {
     return geom;
   }
 
-  // One primitive computed by callbacks on `data`; a moving one has the shutter's two time steps.
-  RTCGeometry user_geometry(void* data, bool moving, RTCBoundsFunction bounds, RTCIntersectFunctionN intersect,
-                            RTCOccludedFunctionN occluded) {
+  RTCGeometry animated_instance_geometry(const AnimatedTransform& motion, RTCScene proto, const Bounds3f& object) {
+    animated_instances.push_back({&motion, proto, object, animated_time_steps(motion)});
+    return user_geometry(&animated_instances.back(), animated_instances.back().steps, animated_instance_bounds_cb,
+                         animated_instance_intersect_cb, animated_instance_occluded_cb);
+  }
+
+  // One primitive computed by callbacks on `data`; time_steps > 0 for a moving one (the shutter's ends, or more for
+  // an animated transform).
+  RTCGeometry user_geometry(void* data, unsigned time_steps, RTCBoundsFunction bounds,
+                            RTCIntersectFunctionN intersect, RTCOccludedFunctionN occluded) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    if (moving) rtcSetGeometryTimeStepCount(geom, 2);
+    if (time_steps > 0) rtcSetGeometryTimeStepCount(geom, time_steps);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, data);
     rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
@@ -289,6 +400,7 @@ struct EmbreeAccel::Impl {
         &bytes);
     scene = new_scene();
     sphere_data.reserve(geometry.spheres.size());  // callbacks keep pointers into it
+    animated_instances.reserve(geometry.instances.size());
     quadric_data.reserve(geometry.quadrics.size());
     prototype_scenes.assign(geometry.prototypes.size(), nullptr);
 
@@ -301,12 +413,15 @@ struct EmbreeAccel::Impl {
         geom = triangle_geometry(geometry.meshes[s.index], s.motion, s.alpha);
       } else if (s.kind == ShapeKind::Sphere) {
         const SphereShape& sph = geometry.spheres[s.index];
-        sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse(), s.motion});
-        geom = user_geometry(&sphere_data.back(), s.moving(), sphere_bounds_cb, sphere_intersect_cb, sphere_occluded_cb);
+        const AnimatedTransform* animated = s.animated >= 0 ? &geometry.motions[size_t(s.animated)] : nullptr;
+        const unsigned steps = animated ? animated_time_steps(*animated) : 2;
+        sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse(), s.motion, animated, steps});
+        geom = user_geometry(&sphere_data.back(), s.moving() ? steps : 0, sphere_bounds_cb, sphere_intersect_cb,
+                             sphere_occluded_cb);
       } else if (s.kind == ShapeKind::Quadric) {
         const QuadricShape& q = geometry.quadrics[s.index];
         quadric_data.push_back({&geometry, id, &q, q.to_world.inverse(), s.motion, s.alpha});
-        geom = user_geometry(&quadric_data.back(), s.moving(), quadric_bounds_cb, quadric_intersect_cb,
+        geom = user_geometry(&quadric_data.back(), s.moving() ? 2 : 0, quadric_bounds_cb, quadric_intersect_cb,
                              quadric_occluded_cb);
       } else {
         const MeshInstance& inst = geometry.instances[s.index];
@@ -320,6 +435,13 @@ struct EmbreeAccel::Impl {
           rtcReleaseGeometry(tri);
           rtcCommitScene(proto);
           check("building an instance prototype");
+        }
+        if (s.animated >= 0) {
+          geom = animated_instance_geometry(geometry.motions[size_t(s.animated)], proto,
+                                            mesh_bounds(geometry.prototypes[inst.prototype]));
+          rtcAttachGeometryByID(scene, geom, id);
+          rtcReleaseGeometry(geom);
+          continue;
         }
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(geom, proto);
@@ -393,14 +515,14 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
     hit.u = rh.hit.u;
     hit.v = rh.hit.v;
     Ray back = ray;  // a moving quadric is hit where it is at the ray's time
-    if (s.moving()) back.o -= s.offset_at(ray.time);
+    if (s.translates()) back.o -= s.offset_at(ray.time);
     hit.ng = quadric_world_normal(g.quadrics[s.index], back, hit.t);
   } else {
     hit.prim = rh.hit.primID;
     hit.u = rh.hit.u;
     hit.v = rh.hit.v;
     // Recomputed from the vertices so both accelerators report the same (v1-v0)x(v2-v0) convention.
-    hit.ng = triangle_world_normal(g, hit.shape, hit.prim);
+    hit.ng = triangle_world_normal(g, hit.shape, hit.prim, ray.time);
   }
   return true;
 }

@@ -54,10 +54,10 @@ ExactHit exact_triangle(const Ray& ray, D3 v0, D3 v1, D3 v2) {
   return r;
 }
 
-// offset: where the (moving) sphere is at the ray's time relative to time 0.
-ExactHit exact_sphere(const Ray& ray, const SphereShape& s, D3 offset) {
+// offset: where the (moving) sphere is at the ray's time relative to time 0; to_world its transform then.
+ExactHit exact_sphere(const Ray& ray, const SphereShape& s, const Transform& to_world, D3 offset) {
   ExactHit r;
-  const Mat4& inv = s.to_world.inverse_matrix();
+  const Mat4& inv = to_world.inverse_matrix();
   const D3 o = apply(inv, to_d(ray.o) - offset, 1.0), d = apply(inv, to_d(ray.d), 0.0);
   const D3 f = o - to_d(s.center);
   const double a = dot(d, d), b = -dot(f, d), rr = double(s.radius) * s.radius;
@@ -149,7 +149,9 @@ ExactHit exact_hit(const WorldGeometry& g, const Ray& ray, uint32_t shape, uint3
   const Shape& s = g.shapes[shape];
   // A moving shape at the ray's time, in double: time * motion added to its time-0 position.
   const D3 offset = {double(ray.time) * s.motion.x, double(ray.time) * s.motion.y, double(ray.time) * s.motion.z};
-  if (s.kind == ShapeKind::Sphere) return exact_sphere(ray, g.spheres[s.index], offset);
+  const Transform animated = s.animated >= 0 ? g.motions[size_t(s.animated)].at(ray.time) : Transform();
+  if (s.kind == ShapeKind::Sphere)
+    return exact_sphere(ray, g.spheres[s.index], s.animated >= 0 ? animated : g.spheres[s.index].to_world, offset);
   if (s.kind == ShapeKind::Quadric) return exact_quadric(ray, g.quadrics[s.index], offset);
   if (s.kind == ShapeKind::Mesh) {
     const TriangleMesh& m = g.meshes[s.index];
@@ -158,7 +160,7 @@ ExactHit exact_hit(const WorldGeometry& g, const Ray& ray, uint32_t shape, uint3
   }
   const MeshInstance& inst = g.instances[s.index];
   const TriangleMesh& m = g.prototypes[inst.prototype];
-  const Mat4& xf = inst.to_world.matrix();
+  const Mat4& xf = (s.animated >= 0 ? animated : inst.to_world).matrix();
   return exact_triangle(ray, apply(xf, to_d(m.vertex(prim, 0)), 1.0) + offset,
                         apply(xf, to_d(m.vertex(prim, 1)), 1.0) + offset,
                         apply(xf, to_d(m.vertex(prim, 2)), 1.0) + offset);

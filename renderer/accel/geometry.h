@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/animated_transform.h"
 #include "core/bounds.h"
 #include "core/quadric.h"
 #include "core/transform.h"
@@ -35,14 +36,20 @@ struct QuadricShape {
 
 enum class ShapeKind : uint8_t { Mesh, Sphere, Instance, Quadric };
 
-// Motion blur: a shape with a non-zero motion is translated by time * motion at a ray's time (Ray::time in [0, 1));
-// its mesh, sphere or instance data describe it at time 0. Accelerators build time-varying geometry for it only.
+// Motion blur, at a ray's time (Ray::time in [0, 1)), in one of two forms; accelerators build time-varying geometry
+// for moving shapes only.
+//   * translation: a shape with a non-zero motion is translated by time * motion; its mesh, sphere or instance data
+//     describe it at time 0 (CENG795 MotionBlur);
+//   * animated: a sphere's or instance's to_world is WorldGeometry::motions[animated] at the ray's time (pbrt's
+//     interpolated transforms); its to_world holds the start transform.
 struct Shape {
   ShapeKind kind = ShapeKind::Mesh;
   uint32_t index = 0;  // into meshes (Mesh), spheres (Sphere), instances (Instance) or quadrics (Quadric)
   Vec3f motion{0.0f, 0.0f, 0.0f};
+  int32_t animated = -1;
   bool alpha = false;  // has an alpha cut-out: candidate hits go through WorldGeometry::alpha
-  bool moving() const { return motion.x != 0.0f || motion.y != 0.0f || motion.z != 0.0f; }
+  bool translates() const { return motion.x != 0.0f || motion.y != 0.0f || motion.z != 0.0f; }
+  bool moving() const { return translates() || animated >= 0; }
   Vec3f offset_at(float time) const { return motion * time; }
 };
 
@@ -67,10 +74,15 @@ struct WorldGeometry {
   std::vector<QuadricShape> quadrics;
   std::vector<TriangleMesh> prototypes;  // object space, used by instances
   std::vector<MeshInstance> instances;
+  std::vector<AnimatedTransform> motions;  // the animated shapes' transforms (Shape::animated)
   bool has_motion = false;  // some shape moves: rays carry a time
   AlphaTest alpha;          // set when some shape has Shape::alpha
   Bounds3f bounds() const;  // over the whole shutter interval
   size_t triangle_count() const;  // counting instanced triangles once per instance
 };
+
+// The object-to-world transform of a Sphere or Instance shape at `time`: its animated transform there, or its own
+// to_world (moved by the translation motion's offset).
+Transform shape_to_world(const WorldGeometry& g, const Shape& s, float time);
 
 }  // namespace kiln

@@ -56,9 +56,27 @@ Bounds3f swept_bounds(const Bounds3f& at_time0, Vec3f motion) {
   return b;
 }
 
+Bounds3f shape_object_bounds(const WorldGeometry& g, const Shape& s) {
+  if (s.kind == ShapeKind::Sphere) {
+    const SphereShape& sp = g.spheres[s.index];
+    return {sp.center - Vec3f(sp.radius), sp.center + Vec3f(sp.radius)};
+  }
+  if (s.kind == ShapeKind::Instance) return mesh_bounds(g.prototypes[g.instances[s.index].prototype]);
+  return mesh_bounds(g.meshes[s.index]);
+}
+
 Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s) {
+  if (s.animated >= 0) return g.motions[size_t(s.animated)].motion_bounds(shape_object_bounds(g, s));
   const Bounds3f b = shape_static_bounds(g, s);
-  return s.moving() ? swept_bounds(b, s.motion) : b;
+  return s.translates() ? swept_bounds(b, s.motion) : b;
+}
+
+Transform shape_to_world(const WorldGeometry& g, const Shape& s, float time) {
+  if (s.animated >= 0) return g.motions[size_t(s.animated)].at(time);
+  const Transform& xf = s.kind == ShapeKind::Sphere     ? g.spheres[s.index].to_world
+                        : s.kind == ShapeKind::Instance ? g.instances[s.index].to_world
+                                                        : Transform();
+  return s.translates() ? Transform::translate(s.offset_at(time)) * xf : xf;
 }
 
 Bounds3f geometry_bounds(const WorldGeometry& g) {

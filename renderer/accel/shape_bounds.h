@@ -14,9 +14,12 @@ Bounds3f mesh_bounds(const TriangleMesh& m);
 Bounds3f quadric_world_bounds(const QuadricShape& q);
 Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst);
 // At time 0 (shape_static_bounds) and over the whole shutter interval (shape_world_bounds): a translation sweeps
-// a box along a straight line, so the union of its two end boxes bounds every instant.
+// a box along a straight line, so the union of its two end boxes bounds every instant; an animated shape's box is
+// its object-space box through AnimatedTransform::motion_bounds.
 Bounds3f shape_static_bounds(const WorldGeometry& g, const Shape& s);
 Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s);
+// In the shape's own space: the sphere's cube, the instance prototype's or the (world-space) mesh's box.
+Bounds3f shape_object_bounds(const WorldGeometry& g, const Shape& s);
 Bounds3f swept_bounds(const Bounds3f& at_time0, Vec3f motion);
 
 Bounds3f geometry_bounds(const WorldGeometry& g);

@@ -23,10 +23,13 @@ SurfacePoint surface_point(const WorldGeometry& g, const Ray& ray, const Hit& hi
 // (v1-v0)x(v2-v0) of triangle prim of a Mesh or Instance shape, in world space, not normalised. For an instance this
 // is the object-space normal through the inverse transpose, sign-corrected when the transform mirrors, so it points
 // the same way as the cross product of the transformed vertices would.
-Vec3f triangle_world_normal(const WorldGeometry& g, uint32_t shape, uint32_t prim);
+// An animated instance is taken at `time`.
+Vec3f triangle_world_normal(const WorldGeometry& g, uint32_t shape, uint32_t prim, float time = 0.0f);
 
-// Unnormalised outward normal, in world space, of a sphere/ellipsoid hit at parameter t of the world-space ray.
+// Unnormalised outward normal, in world space, of a sphere/ellipsoid hit at parameter t of the world-space ray
+// (with its own to_world, or the one given: an animated sphere's at the ray's time).
 Vec3f sphere_world_normal(const SphereShape& s, const Ray& ray, float t);
+Vec3f sphere_world_normal(const SphereShape& s, const Transform& to_world, const Ray& ray, float t);
 
 // The point of a quadric hit at parameter t of the world-space ray, in the quadric's object space (on its surface).
 Vec3f quadric_object_point(const QuadricShape& q, const Ray& ray, float t);

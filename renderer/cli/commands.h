@@ -37,8 +37,17 @@ struct RenderArgs {
 };
 
 int cmd_render(const RenderArgs& args);
-// overrides: --rules and --light-sampler.
-int cmd_info(const std::string& scene_path, int subdivide, const RuleOverrides& overrides);
+struct InfoArgs {
+  std::string scene;
+  int subdivide = -1;
+  RuleOverrides overrides;     // --rules and --light-sampler
+  bool json = false;           // one JSON object instead of the text report
+  bool allow_missing = false;  // missing PLY meshes and included files are reported and left out (surveys)
+};
+
+// What a scene contains, what of it is rendered as written, substituted or ignored (per directive for pbrt), and
+// which renderer parts it needs.
+int cmd_info(const InfoArgs& args);
 // Prints block-luminance statistics and MSE / relMSE of image against reference (both EXR) as JSON.
 int cmd_compare(const std::string& image, const std::string& reference, int block);
 

@@ -81,16 +81,19 @@ int main(int argc, char** argv) {
       ->group("");
   render->add_flag("--reverse-tiles", ra.reverse_tiles, "Schedule tiles in reverse order (determinism checks)")->group("");
 
-  std::string info_scene;
-  int info_subdivide = -1;
-  auto* info = app.add_subcommand("info", "List what a scene contains and which renderer parts it needs");
-  info->add_option("scene", info_scene, "Scene file")->required();
-  info->add_option("--subdivide", info_subdivide, "Loop-subdivide every mesh this many times");
-  RuleOverrides info_rules;
-  info->add_option("--rules", info_rules.rules, "Show the integrators under these rules: kiln or course")
+  InfoArgs ia;
+  auto* info = app.add_subcommand("info", "List what a scene contains, what of it is rendered, substituted or "
+                                          "ignored (per pbrt directive), and which renderer parts it needs");
+  info->add_option("scene", ia.scene, "Scene file")->required();
+  info->add_option("--subdivide", ia.subdivide, "Loop-subdivide every mesh this many times");
+  info->add_option("--rules", ia.overrides.rules, "Show the integrators under these rules: kiln or course")
       ->check(CLI::IsMember({"kiln", "course"}));
-  info->add_option("--light-sampler", info_rules.light_sampler, kLightSamplerHelp)
+  info->add_option("--light-sampler", ia.overrides.light_sampler, kLightSamplerHelp)
       ->check(CLI::IsMember({"power", "uniform", "bvh"}));
+  info->add_flag("--json", ia.json, "Print one JSON object (every directive's outcome, features, counts)");
+  info->add_flag("--allow-missing", ia.allow_missing,
+                 "pbrt: report missing PLY meshes and included files and leave them out instead of failing "
+                 "(to survey a scene collection without its large files)");
 
   std::string cmp_image, cmp_ref;
   int cmp_block = 32;
@@ -173,7 +176,7 @@ int main(int argc, char** argv) {
   }
   ra.accel = accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*render) return run_guarded([&] { return cmd_render(ra); });
-  if (*info) return run_guarded([&] { return cmd_info(info_scene, info_subdivide, info_rules); });
+  if (*info) return run_guarded([&] { return cmd_info(ia); });
   ca.accel = ca_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;
   if (*converge) return run_guarded([&] { return cmd_converge(ca); });
   pa.accel = profile_accel == "bvh" ? AccelKind::Bvh : AccelKind::Embree;

@@ -253,7 +253,8 @@ struct CameraJob {
     options.reverse_tile_order = args.reverse_tiles;
     options.filter = pixel_filter_for(cd, args.filter);
     if (args.adaptive) options.adaptive = AdaptiveSampling{*args.adaptive, args.adaptive_min_spp};
-    if (args.aovs) aovs = parse_aovs(*args.aovs);
+    // A scene's own request for AOV layers (pbrt Film "gbuffer"): all of them, unless --aov chose.
+    aovs = args.aovs ? parse_aovs(*args.aovs) : (cd.aov_layers ? parse_aovs("all") : 0u);
     if (aovs & kAovSurface) film.keep_surfaces();  // the samples record what they see (renderer/integrators/aov.h)
   }
   std::string stem() const { return stem_of(desc.image_name, "camera" + desc.id); }

@@ -109,12 +109,15 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             const FilterSample fs = pixel_offset(settings, options.spp_total, filter, sampler);
             sampler.set_dimension(kLensDimension);
             const Vec2f lens = sampler.next_2d();
-            Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y, lens);
             // Only a scene with motion takes a time sample (from a dedicated stream: other values are unchanged).
-            if (settings.features & kFeatureMotionBlur) ray.time = sampler.dedicated_1d(kTimeStream);
+            const float time = (settings.features & kFeatureMotionBlur) ? sampler.dedicated_1d(kTimeStream) : 0.0f;
+            const CameraRay cr =
+                camera.sample(float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y, lens, time);
             sampler.set_dimension(kFirstPathDimension);
             VisibleSurface visible;
-            Rgb L = trace(ctx, ray, film_position, sampler, st.rays, surfaces ? &visible : nullptr);
+            // A ray the lens blocks still counts as a sample, of no radiance (and sees no surface).
+            Rgb L = cr.weight > 0.0f ? trace(ctx, cr.ray, film_position, sampler, st.rays, surfaces ? &visible : nullptr)
+                                     : Rgb(0.0f);
             if (!L.is_finite() || L.has_negative()) {
               if (!st.has_nan) {
                 st.has_nan = true;
@@ -125,7 +128,8 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
               ++st.rays.nan_samples;
               L = Rgb(0.0f);
             }
-            film.add_sample(x, y, s, L, fs.weight, visible);
+            // The camera's own weight (a realistic lens's transmission) scales the radiance, not what it saw.
+            film.add_sample(x, y, s, L * cr.weight, fs.weight, visible);
             if (options.adaptive && options.adaptive->check_due(px.n)) px.converged = options.adaptive->converged(px);
           }
           if (options.on_pixel_done) options.on_pixel_done();

@@ -22,7 +22,7 @@ enum Feature : uint32_t {
   kFeatureTextures = 1u << 12,        // image or procedural textures (SceneTextures built)
   kFeatureDepthOfField = 1u << 13,
   kFeatureInfiniteLights = 1u << 14,  // rays that leave the scene see light
-  kFeatureMotionBlur = 1u << 15,      // moving shapes: camera rays take a time sample, accelerators are time-varying
+  kFeatureMotionBlur = 1u << 15,      // moving shapes or camera: rays take a time sample, accelerators vary in time
   kFeatureEnvironmentMap = 1u << 16,  // an image-based infinite light (lat-long environment map)
   kFeatureBackfaceCulling = 1u << 17, // camera rays skip triangles facing away from them (course rules)
   kFeatureQuadrics = 1u << 18,        // pbrt disks, cylinders and partial spheres (user geometry)

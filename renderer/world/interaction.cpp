@@ -13,15 +13,17 @@ Vec3f interpolated_normal(const std::vector<Vec3f>& n, const TriangleMesh& m, co
   return n[idx[0]] * (1.0f - hit.u - hit.v) + n[idx[1]] * hit.u + n[idx[2]] * hit.v;
 }
 
-// The interpolated per-vertex normal of a smooth mesh or instance, in world space, not normalised.
+// The interpolated per-vertex normal of a smooth mesh or instance, in world space, not normalised (an animated
+// instance's at the ray's time).
 template <bool kMeshesOnly>
-Vec3f smooth_normal(const World& world, const ShapeData& sd, const Hit& hit) {
+Vec3f smooth_normal(const World& world, const ShapeData& sd, const Hit& hit, float time) {
   const Shape& shape = world.geometry.shapes[hit.shape];
   const std::vector<Vec3f>& normals = world.normals[size_t(sd.normals)];
   if (kMeshesOnly || shape.kind == ShapeKind::Mesh)
     return interpolated_normal(normals, world.geometry.meshes[shape.index], hit);
   const MeshInstance& inst = world.geometry.instances[shape.index];
-  return inst.to_world.normal(interpolated_normal(normals, world.geometry.prototypes[inst.prototype], hit));
+  const Vec3f n = interpolated_normal(normals, world.geometry.prototypes[inst.prototype], hit);
+  return shape.animated >= 0 ? shape_to_world(world.geometry, shape, time).normal(n) : inst.to_world.normal(n);
 }
 
 // dp/du and dp/dv of a triangle from its corners and their uv (pbrt's triangle derivatives); a frame around the face
@@ -60,9 +62,9 @@ void triangle_texture_frame(const TriangleMesh& m, const std::vector<Vec2f>* uvs
 // Course sphere mapping (spec §8), in the sphere's own frame: theta = acos(y/r), phi = atan2(z, x),
 // u = (pi - phi) / (2 pi), v = theta / pi. With phi = pi - 2 pi u and theta = pi v:
 // dp/du = 2 pi (z, 0, -x), dp/dv = pi (y cos phi, -r sin theta, y sin phi).
-void sphere_texture_frame(const SphereShape& s, SurfaceInteraction& si) {
-  const bool xf = !s.to_world.is_identity();
-  const Vec3f local = (xf ? s.to_world.inverse().point(si.p) : si.p) - s.center;
+void sphere_texture_frame(const SphereShape& s, const Transform& to_world, SurfaceInteraction& si) {
+  const bool xf = !to_world.is_identity();
+  const Vec3f local = (xf ? to_world.inverse().point(si.p) : si.p) - s.center;
   const float r = s.radius;
   const float cos_theta = std::clamp(local.y / r, -1.0f, 1.0f);
   const float theta = std::acos(cos_theta), phi = std::atan2(local.z, local.x);
@@ -71,8 +73,8 @@ void sphere_texture_frame(const SphereShape& s, SurfaceInteraction& si) {
   Vec3f dpdu = Vec3f(local.z, 0.0f, -local.x) * (2.0f * kPi);
   Vec3f dpdv = Vec3f(local.y * std::cos(phi), -r * sin_theta, local.y * std::sin(phi)) * kPi;
   if (xf) {
-    dpdu = s.to_world.vector(dpdu);
-    dpdv = s.to_world.vector(dpdv);
+    dpdu = to_world.vector(dpdu);
+    dpdv = to_world.vector(dpdv);
   }
   if (length_squared(cross(dpdu, dpdv)) > 0.0f) {
     si.dpdu = dpdu;
@@ -97,8 +99,10 @@ void quadric_texture_frame(const QuadricShape& q, const Ray& ray, const Hit& hit
   }
 }
 
+// A moving sphere, instance or quadric is taken where the ray found it.
 template <bool kMeshesOnly>
 void texture_frame(const World& world, const ShapeData& sd, const Ray& ray, const Hit& hit, SurfaceInteraction& si) {
+  const float time = ray.time;
   const Shape& shape = world.geometry.shapes[hit.shape];
   const std::vector<Vec2f>* uvs = sd.uvs >= 0 ? &world.uvs[size_t(sd.uvs)] : nullptr;
   const ShapeKind kind = kMeshesOnly ? ShapeKind::Mesh : shape.kind;
@@ -106,13 +110,18 @@ void texture_frame(const World& world, const ShapeData& sd, const Ray& ray, cons
     case ShapeKind::Mesh: triangle_texture_frame(world.geometry.meshes[shape.index], uvs, hit, nullptr, si); break;
     case ShapeKind::Instance: {
       const MeshInstance& inst = world.geometry.instances[shape.index];
-      triangle_texture_frame(world.geometry.prototypes[inst.prototype], uvs, hit, &inst.to_world, si);
+      const Transform to_world = shape.moving() ? shape_to_world(world.geometry, shape, time) : inst.to_world;
+      triangle_texture_frame(world.geometry.prototypes[inst.prototype], uvs, hit, &to_world, si);
       break;
     }
-    case ShapeKind::Sphere: sphere_texture_frame(world.geometry.spheres[shape.index], si); break;
+    case ShapeKind::Sphere: {
+      const SphereShape& s = world.geometry.spheres[shape.index];
+      sphere_texture_frame(s, shape.moving() ? shape_to_world(world.geometry, shape, time) : s.to_world, si);
+      break;
+    }
     case ShapeKind::Quadric: {
       Ray back = ray;  // a moving quadric, where the ray found it
-      if (shape.moving()) back.o -= shape.offset_at(ray.time);
+      if (shape.translates()) back.o -= shape.offset_at(ray.time);
       quadric_texture_frame(world.geometry.quadrics[shape.index], back, hit, si);
       break;
     }
@@ -140,7 +149,7 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   }
   si.light = sd.light;
   if (sd.normals >= 0) {
-    const Vec3f ns = smooth_normal<kMeshesOnly>(world, sd, hit);
+    const Vec3f ns = smooth_normal<kMeshesOnly>(world, sd, hit, ray.time);
     if (length_squared(ns) > 0.0f) {
       const Vec3f n = normalize(ns);
       si.ns = dot(n, si.ng) < 0.0f ? -n : n;

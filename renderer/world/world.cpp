@@ -85,6 +85,29 @@ Vec3f shape_motion(World& w, const std::string& name, Vec3f motion, int light) {
   return motion;
 }
 
+// The animated transform of a sphere or instance whose to_world moves (pbrt ActiveTransform), as an index into
+// WorldGeometry::motions; -1 when it does not move. Emitters stay at their start, as with shape_motion.
+int32_t shape_animation(World& w, const std::string& name, const Transform& start,
+                        const std::optional<TransformMotionDesc>& motion, int light) {
+  if (!motion) return -1;
+  if (light >= 0) {
+    w.warnings.push_back(name + ": a moving emitter is not rendered moving; it stays at its start transform");
+    return -1;
+  }
+  AnimatedTransform a;
+  try {
+    a = AnimatedTransform(start, motion->start_time, motion->end, motion->end_time);
+  } catch (const Error& e) {
+    throw Error(name + ": its motion cannot be interpolated: " + e.what());
+  }
+  if (!a.animated()) return -1;
+  w.features |= kFeatureMotionBlur;
+  w.geometry.has_motion = true;
+  ++w.stats.moving_shapes;
+  w.geometry.motions.push_back(a);
+  return int32_t(w.geometry.motions.size() - 1);
+}
+
 // A sphere with an alpha cut-out is rendered as a whole-turn quadric sphere: pbrt's (u, v) for its alpha texture.
 QuadricDesc quadric_of_sphere(const SphereDesc& s) {
   QuadricDesc q;
@@ -141,8 +164,10 @@ class WorldBuilder {
     const Bounds3f bounds = w_.geometry.bounds();
     w_.scene_radius = bounds.empty() ? 1.0f : std::max(0.5f * bounds.extent(), 1e-6f);
     add_lights();
-    for (const CameraDesc& c : scene_.cameras)
-      if (c.aperture_size > 0.0f) w_.features |= kFeatureDepthOfField;
+    for (const CameraDesc& c : scene_.cameras) {
+      if (c.aperture_size > 0.0f || c.projection == CameraProjection::Realistic) w_.features |= kFeatureDepthOfField;
+      if (c.motion) w_.features |= kFeatureMotionBlur;  // rays carry a time for the camera's pose
+    }
     if (options_.build_accelerator) w_.accel = make_accelerator(options_.accel, w_.geometry);
     w_.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return std::move(world_);
@@ -298,8 +323,8 @@ class WorldBuilder {
                                    w_.stats.sphere_lights, kFeatureSphereLights);
         w_.stats.cone_sampler_built = true;
       }
-      g.shapes.push_back(
-          Shape{ShapeKind::Sphere, uint32_t(g.spheres.size()), shape_motion(w_, s.name, s.motion, sd.light)});
+      g.shapes.push_back(Shape{ShapeKind::Sphere, uint32_t(g.spheres.size()), shape_motion(w_, s.name, s.motion, sd.light),
+                               shape_animation(w_, s.name, s.to_world, s.to_world_motion, sd.light)});
       g.spheres.push_back(SphereShape{s.center, s.radius, s.to_world});
       w_.shape_data.push_back(sd);
       w_.features |= kFeatureSpheres;
@@ -367,8 +392,9 @@ class WorldBuilder {
         sd.uvs = pu;
       }
       add_alpha(uint32_t(g.shapes.size()), base.alpha, sd.uvs, inst.name, false);
-      g.shapes.push_back(
-          Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w_, inst.name, inst.motion, -1)});
+      g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size()),
+                               shape_motion(w_, inst.name, inst.motion, -1),
+                               shape_animation(w_, inst.name, inst.to_world, inst.to_world_motion, -1)});
       g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
       w_.shape_data.push_back(sd);
       w_.stats.triangles += g.prototypes[size_t(proto)].triangle_count();

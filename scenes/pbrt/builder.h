@@ -64,6 +64,13 @@ class PbrtBuilder {
   // MakeNamedMaterial: ps holds "type" and the material's parameters.
   void make_named_material(const std::string& name, const PbrtParams& ps);
   std::optional<int> named_material(const std::string& name) const;
+  // NamedMaterial: the material's index. pbrt-v4 looks names up once the whole file is read, so a name may be used
+  // before its MakeNamedMaterial (the collection's contemporary-bathroom does): it gets a slot now, which the
+  // definition fills.
+  int use_named_material(const std::string& name, const std::string& file, int line);
+  // At the end of the scene: a name used but defined nowhere is an error naming where it was used; with
+  // allow_missing_files (its definition may be in a missing file) pbrt's default material stands in, reported.
+  void finish_named_materials();
   // pbrt's default material (diffuse, reflectance 0.5), made on first use; `file` names the scene in messages.
   int default_material(const std::string& file);
   // Once the whole scene is read: the names of "mix" materials' components (error: a missing one, or mixes that
@@ -115,6 +122,13 @@ class PbrtBuilder {
   PbrtDiagnostics diag_;
   PbrtResolver resolve_;
   std::map<std::string, int> named_materials_;
+  struct ForwardMaterial {
+    int slot = -1;
+    std::string file;  // where the name was first used
+    int line = 0;
+  };
+  std::map<std::string, ForwardMaterial> forward_materials_;  // used, not defined yet
+  void fill_material_slot(int slot, int made);
   // A mix whose component names are resolved at the end (they may be defined after it).
   struct PendingMix {
     int material;

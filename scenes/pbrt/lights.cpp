@@ -54,7 +54,7 @@ void PbrtBuilder::make_light(const std::string& type, const PbrtParams& ps, cons
     infinite_light(ps, scale, xf);
   } else {
     diag_.warn(ps, "light " + in_quotes(type) + " is not supported; skipped");
-    diag_.unsupported("pbrt light " + in_quotes(type));
+    diag_.unsupported("pbrt light " + in_quotes(type), LoadOutcome::Ignored);
     for (const PbrtParam& p : ps.params()) p.used = true;
   }
   diag_.report_unused(ps);
@@ -93,7 +93,7 @@ void PbrtBuilder::image_infinite_light(const PbrtParams& ps, const std::string& 
 std::optional<PbrtAreaLight> PbrtBuilder::make_area_light(const std::string& type, const PbrtParams& ps) {
   if (type != "diffuse") {
     diag_.warn(ps, "area light " + in_quotes(type) + " is not supported; the shapes that follow do not emit");
-    diag_.unsupported("pbrt area light " + in_quotes(type));
+    diag_.unsupported("pbrt area light " + in_quotes(type), LoadOutcome::Ignored);
     for (const PbrtParam& p : ps.params()) p.used = true;
     return std::nullopt;
   }

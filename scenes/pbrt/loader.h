@@ -35,8 +35,14 @@ inline constexpr int kPbrtDefaultMaxDepth = 5;
 // Nesting limit for Include / Import (a file that includes itself would otherwise recurse without end).
 inline constexpr int kPbrtMaxIncludeDepth = 32;
 
-SceneDesc load_pbrt(const std::string& path);
+struct PbrtOptions {
+  // A PLY mesh or included file that cannot be found is a warning (the shape or file is left out) instead of an
+  // error: for surveying a scene collection whose large files are not at hand (kiln info --allow-missing).
+  bool allow_missing_files = false;
+};
+
+SceneDesc load_pbrt(const std::string& path, const PbrtOptions& options = {});
 // Parses `text` as though it were the file `path` (its Include, Import and mesh files resolve against that folder).
-SceneDesc parse_pbrt(std::string text, const std::string& path);
+SceneDesc parse_pbrt(std::string text, const std::string& path, const PbrtOptions& options = {});
 
 }  // namespace kiln

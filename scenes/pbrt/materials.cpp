@@ -222,7 +222,47 @@ void PbrtBuilder::make_named_material(const std::string& name, const PbrtParams&
   if (named_materials_.count(name)) ps.fail(ps.line(), "material " + in_quotes(name) + " is defined twice");
   const auto type = ps.find_string("type");
   if (!type) ps.fail(ps.line(), "needs \"string type\" (diffuse, conductor, dielectric, coateddiffuse, ...)");
-  named_materials_[name] = make_material(*type, ps);
+  const int made = make_material(*type, ps);
+  const auto forward = forward_materials_.find(name);
+  if (forward == forward_materials_.end()) {
+    named_materials_[name] = made;
+    return;
+  }
+  fill_material_slot(forward->second.slot, made);
+  named_materials_[name] = forward->second.slot;
+  forward_materials_.erase(forward);
+}
+
+// Moves the material just made (the last one) into a slot reserved by a use before the definition.
+void PbrtBuilder::fill_material_slot(int slot, int made) {
+  MaterialDesc& d = scene_.materials[size_t(slot)];
+  d = std::move(scene_.materials[size_t(made)]);
+  d.id = slot + 1;
+  if (made + 1 == int(scene_.materials.size())) scene_.materials.pop_back();
+}
+
+int PbrtBuilder::use_named_material(const std::string& name, const std::string& file, int line) {
+  if (const auto it = named_materials_.find(name); it != named_materials_.end()) return it->second;
+  if (const auto it = forward_materials_.find(name); it != forward_materials_.end()) return it->second.slot;
+  MaterialDesc slot;
+  slot.id = int(scene_.materials.size()) + 1;
+  scene_.materials.push_back(slot);
+  forward_materials_[name] = {int(scene_.materials.size()) - 1, file, line};
+  return int(scene_.materials.size()) - 1;
+}
+
+void PbrtBuilder::finish_named_materials() {
+  for (const auto& [name, f] : forward_materials_) {
+    const std::string where = "line " + std::to_string(f.line) + " (NamedMaterial)";
+    if (!diag_.allow_missing_files)
+      throw Error(f.file, where, "no material named " + in_quotes(name) + " (MakeNamedMaterial defines them)");
+    diag_.warn(f.file, f.line, "NamedMaterial",
+               "no material named " + in_quotes(name) + " is defined (in a missing file?); pbrt's default is used");
+    diag_.unsupported("named materials defined nowhere (left out: --allow-missing)");
+    PbrtParams none(f.file, "default material", f.line);
+    fill_material_slot(f.slot, make_material("diffuse", none));
+  }
+  forward_materials_.clear();
 }
 
 std::optional<int> PbrtBuilder::named_material(const std::string& name) const {

@@ -194,9 +194,13 @@ void PbrtParams::parse(PbrtCursor& cursor) {
 }
 
 void PbrtParams::add(PbrtParam p) {
-  for (const PbrtParam& q : params_)
-    if (q.name == p.name)
-      fail(p.line, "parameter " + in_quotes(p.name) + " is given twice (first on line " + std::to_string(q.line) + ")");
+  for (PbrtParam& q : params_)
+    if (q.name == p.name) {
+      remarks_.push_back({p.line, "parameter " + in_quotes(p.name) + " is given twice (first on line " +
+                                      std::to_string(q.line) + "); the last value is used, as pbrt does"});
+      q = std::move(p);
+      return;
+    }
   params_.push_back(std::move(p));
 }
 

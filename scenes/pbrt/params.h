@@ -64,7 +64,13 @@ class PbrtParams {
 
   // Reads `"type name" value(s)` pairs from the cursor until the next token is not a quoted string.
   void parse(PbrtCursor& cursor);
-  void add(PbrtParam p);  // throws when the name is already there
+  // A name given twice keeps its last value (pbrt-v4 looks parameters up from the end of the list), with a remark.
+  void add(PbrtParam p);
+  struct Remark {
+    int line = 0;
+    std::string message;
+  };
+  const std::vector<Remark>& remarks() const { return remarks_; }
   // Parameters of an `Attribute` directive, consulted when the list itself lacks a name (never reported unused).
   void set_defaults(const PbrtParams* defaults) { defaults_ = defaults; }
 
@@ -120,6 +126,7 @@ class PbrtParams {
   std::string file_, context_, dir_ = ".";
   int line_ = 0;
   std::vector<PbrtParam> params_;
+  std::vector<Remark> remarks_;
   const PbrtParams* defaults_ = nullptr;
 };
 

@@ -3,6 +3,7 @@
 // scenes/pbrt/shapes.h and the camera by scenes/pbrt/camera.h.
 #include "scenes/pbrt/loader.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "core/animated_transform.h"
 #include "core/error.h"
 #include "scenes/gzip_file.h"
 #include "scenes/parse_util.h"
@@ -36,6 +38,8 @@ enum class BlockKind { Attribute, Object, Import };
 
 struct GraphicsState {
   TransformPair ctm;
+  std::array<bool, 2> active = {true, true};  // which of ctm ActiveTransform lets the transform directives change
+  float transform_start = 0.0f, transform_end = 1.0f;  // TransformTimes (pbrt's time)
   bool reverse_orientation = false;
   int material = -1;  // index into SceneDesc::materials; -1: pbrt's default material
   std::optional<PbrtAreaLight> area_light;
@@ -64,17 +68,18 @@ struct OpenFile {
 
 bool same(const Transform& a, const Transform& b) { return a.matrix() == b.matrix(); }
 
+// The matrix only: a singular transform (no inverse) is accepted until something needs its inverse.
 bool finite_transform(const Transform& t) {
-  for (const auto* m : {&t.matrix(), &t.inverse_matrix()})
-    for (const auto& row : m->m)
-      for (float x : row)
-        if (!std::isfinite(x)) return false;
+  for (const auto& row : t.matrix().m)
+    for (float x : row)
+      if (!std::isfinite(x)) return false;
   return true;
 }
 
 class PbrtParser {
  public:
-  explicit PbrtParser(const std::string& path) : root_path_(path) {
+  PbrtParser(const std::string& path, const PbrtOptions& options) : root_path_(path) {
+    diag_.allow_missing_files = options.allow_missing_files;
     root_dir_ = fs::path(path).parent_path().string();
     if (root_dir_.empty()) root_dir_ = ".";
     scene_.source_path = path;
@@ -128,7 +133,9 @@ class PbrtParser {
       }
       update_trace();
       if (t->kind != PbrtTokenKind::Word) fail(t->line, "", "expected a directive, got " + pbrt_describe(*t));
+      diag_.begin_directive(file(), t->line, std::string(t->text));
       directive(cur, *t);
+      diag_.end_directive();
     }
   }
 
@@ -206,24 +213,48 @@ class PbrtParser {
   PbrtParams read_params(PbrtCursor& cur, int line, const std::string& context,
                          const std::shared_ptr<const PbrtParams>& defaults = nullptr) {
     PbrtParams ps(file(), context, line, files_.back().dir);
+    diag_.name_directive(context);
     ps.set_defaults(defaults.get());
     ps.parse(cur);
+    continue_params(ps, line, context);
+    for (const PbrtParams::Remark& r : ps.remarks()) warn(r.line, context, r.message);
     return ps;
+  }
+
+  // pbrt reads one stream of tokens across the end of an included file, so a parameter list that an included file
+  // ends may go on in the file that included it (the included file is closed by the main loop afterwards).
+  void continue_params(PbrtParams& ps, int line, const std::string& context) {
+    for (size_t i = files_.size(); i-- > 1;) {
+      if (files_[i].cursor->peek()) return;  // the list ended inside this file
+      PbrtCursor& outer = *files_[i - 1].cursor;
+      const auto t = outer.peek();
+      if (!t) continue;
+      if (t->kind != PbrtTokenKind::String) return;
+      warn(line, context,
+           "the parameter list goes on after the end of this file, in " + outer.file() + " from line " +
+               std::to_string(t->line) + " (read as one list, as pbrt does)");
+      ps.parse(outer);
+    }
   }
 
   // A file named in the scene: relative to the including file's folder, else to the main scene's folder.
   std::string resolve(const std::string& name, int line, const std::string& context) const {
-    if (name.empty()) fail(line, context, "the file name is empty");
+    return resolve_in(files_.back().dir, file(), name, line, context);
+  }
+  // The same for a name written earlier in `file` (of folder `dir`), which may have been closed since.
+  std::string resolve_in(const std::string& dir, const std::string& file, const std::string& name, int line,
+                         const std::string& context) const {
+    if (name.empty()) throw Error(file, location(line, context), "the file name is empty");
     const fs::path p(name);
     if (p.is_absolute()) return p.string();
     std::error_code ec;
-    const fs::path local = fs::path(files_.back().dir) / p;
+    const fs::path local = fs::path(dir) / p;
     if (fs::is_regular_file(local, ec)) return local.lexically_normal().string();
     const fs::path from_root = fs::path(root_dir_) / p;
     if (fs::is_regular_file(from_root, ec)) return from_root.lexically_normal().string();
-    fail(line, context,
-         "cannot find " + in_quotes(name) + " (looked for " + local.lexically_normal().string() +
-             (local == from_root ? "" : " and " + from_root.lexically_normal().string()) + ")");
+    throw Error(file, location(line, context),
+                "cannot find " + in_quotes(name) + " (looked for " + local.lexically_normal().string() +
+                    (local == from_root ? "" : " and " + from_root.lexically_normal().string()) + ")");
   }
 
   // ---- directives ----
@@ -246,7 +277,11 @@ class PbrtParser {
     }
     if (d == "Scale") {
       const auto v = read_numbers<3>(cur, line, d, false);
-      return apply(line, d, [&] { return Transform::scale({v[0], v[1], v[2]}); });
+      return apply(line, d, [&] {
+        Mat4 m = Mat4::identity();
+        for (size_t i = 0; i < 3; ++i) m.m[i][i] = v[i];
+        return Transform::from_matrix_maybe_singular(m);  // pbrt accepts a zero scale (a flattened shape)
+      });
     }
     if (d == "Rotate") {
       const auto v = read_numbers<4>(cur, line, d, false);
@@ -261,7 +296,7 @@ class PbrtParser {
       Mat4 m;
       for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) m.m[r][c] = v[size_t(c * 4 + r)];  // the file lists the matrix by columns
-      const Transform x = checked(line, d, [&] { return Transform::from_matrix(m); });
+      const Transform x = checked(line, d, [&] { return Transform::from_matrix_maybe_singular(m); });
       if (d == "Transform") return set_ctm(line, d, {x, x});
       return apply(line, d, [&] { return x; });
     }
@@ -273,26 +308,32 @@ class PbrtParser {
     if (d == "CoordSysTransform") {
       const std::string name = read_string(cur, line, d);
       const auto it = coord_systems_.find(name);
-      if (it == coord_systems_.end())
-        return warn(line, d, "no coordinate system named " + in_quotes(name) + "; ignored");
+      if (it == coord_systems_.end()) {
+        warn(line, d, "no coordinate system named " + in_quotes(name) + "; ignored");
+        return diag_.unsupported("CoordSysTransform to an unknown coordinate system", LoadOutcome::Ignored);
+      }
       gs_.ctm = it->second;
       return;
     }
     if (d == "ActiveTransform") {
       const PbrtToken a = next_token(cur, line, d);
       if (a.is_word("All"))
-        active_ = {true, true};
+        gs_.active = {true, true};
       else if (a.is_word("StartTime"))
-        active_ = {true, false};
+        gs_.active = {true, false};
       else if (a.is_word("EndTime"))
-        active_ = {false, true};
+        gs_.active = {false, true};
       else
         fail(a.line, d, "expected All, StartTime or EndTime, got " + pbrt_describe(a));
       return;
     }
     if (d == "TransformTimes") {
-      read_numbers<2>(cur, line, d, false);
-      return warn(line, d, "shutter times are ignored (pbrt motion blur is not imported)");
+      const auto v = read_numbers<2>(cur, line, d, false);
+      require_options(line, d);
+      if (!(v[1] > v[0])) fail(line, d, "the end time must be after the start time");
+      gs_.transform_start = v[0];
+      gs_.transform_end = v[1];
+      return;
     }
     if (d == "ReverseOrientation") {
       gs_.reverse_orientation = !gs_.reverse_orientation;
@@ -306,7 +347,8 @@ class PbrtParser {
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type));
       require_options(line, d);
       for (const PbrtParam& p : ps.params()) p.used = true;
-      return warn(line, d, "ignored: Kiln traces rays through Embree (or its own BVH, --accel bvh)");
+      return warn(line, d,
+                  "the same image either way: Kiln traces rays through Embree (or its own BVH, --accel bvh)");
     }
     if (d == "ColorSpace") {
       const std::string name = read_string(cur, line, d);
@@ -319,12 +361,13 @@ class PbrtParser {
     if (d == "Option") {
       const std::string name = read_string(cur, line, d);
       next_token(cur, line, d);
-      return warn(line, d, "option " + in_quotes(name) + " is ignored");
+      warn(line, d, "option " + in_quotes(name) + " is ignored");
+      return diag_.unsupported("pbrt Option " + in_quotes(name), LoadOutcome::Ignored);
     }
     if (d == "WorldBegin") return world_begin(line);
     if (d == "WorldEnd") {
       require_world(line, d);
-      return warn(line, d, "WorldEnd is pbrt-v3 syntax (pbrt-v4 ends the world at the end of the file); ignored");
+      return warn(line, d, "WorldEnd is pbrt-v3 syntax (pbrt-v4 ends the world at the end of the file); skipped");
     }
     if (d == "Attribute") return attribute(cur, line);
     if (d == "Shape") return shape(cur, line);
@@ -344,9 +387,7 @@ class PbrtParser {
     if (d == "NamedMaterial") {
       const std::string name = read_string(cur, line, d);
       require_world(line, d);
-      const auto material = builder_.named_material(name);
-      if (!material) fail(line, d, "no material named " + in_quotes(name) + " (MakeNamedMaterial defines them)");
-      gs_.material = *material;
+      gs_.material = builder_.use_named_material(name, file(), line);
       return;
     }
     if (d == "Texture") {
@@ -361,7 +402,8 @@ class PbrtParser {
       const std::string type = read_string(cur, line, d);
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(type), gs_.defaults.light);
       require_world(line, d);
-      if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, d);
+      if (!same(gs_.ctm[0], gs_.ctm[1]))
+        warn(line, d, "the light's transform moves over the shutter; it is lit from its start transform (as pbrt does)");
       return builder_.make_light(type, ps, gs_.ctm[0]);
     }
     if (d == "AreaLightSource") {
@@ -392,13 +434,13 @@ class PbrtParser {
       const std::string name = read_string(cur, line, d);
       PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name));
       for (const PbrtParam& p : ps.params()) p.used = true;
-      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)");
+      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
       return warn(line, d, "participating media are not rendered; medium " + in_quotes(name) + " ignored");
     }
     if (d == "MediumInterface") {
       read_string(cur, line, d);
       if (const auto second = cur.peek(); second && second->kind == PbrtTokenKind::String) cur.next();
-      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)");
+      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
       return warn(line, d, "participating media are not rendered; ignored");
     }
     fail(line, "", "unknown directive '" + std::string(t.text.substr(0, 40)) + "'");
@@ -443,7 +485,8 @@ class PbrtParser {
       slot = &gs_.defaults.texture;
     else if (target == "medium") {
       for (const PbrtParam& p : ps.params()) p.used = true;
-      return warn(line, "Attribute", "participating media are not rendered; ignored");
+      warn(line, "Attribute", "participating media are not rendered; ignored");
+      return diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
     } else {
       fail(line, "Attribute", "unknown target " + in_quotes(target) + " (shape, light, material, medium, texture)");
     }
@@ -478,7 +521,7 @@ class PbrtParser {
   void apply(int line, const std::string& d, F&& make) {
     const Transform x = checked(line, d, make);
     for (int i = 0; i < 2; ++i)
-      if (active_[size_t(i)]) {
+      if (gs_.active[size_t(i)]) {
         gs_.ctm[size_t(i)] = gs_.ctm[size_t(i)] * x;
         if (!finite_transform(gs_.ctm[size_t(i)]))
           fail(line, d, "the accumulated transformation overflows single precision");
@@ -487,7 +530,7 @@ class PbrtParser {
 
   void set_ctm(int, const std::string&, const TransformPair& t) {
     for (int i = 0; i < 2; ++i)
-      if (active_[size_t(i)]) gs_.ctm[size_t(i)] = t[size_t(i)];
+      if (gs_.active[size_t(i)]) gs_.ctm[size_t(i)] = t[size_t(i)];
   }
 
   // pbrt's LookAt: the camera-from-world transform of an eye at `eye` looking at `look` (camera +z forward, +y up,
@@ -517,7 +560,17 @@ class PbrtParser {
     const std::string name = read_string(cur, line, d);
     const bool import = d == "Import";
     if (import) require_world(line, d);
-    const std::string path = resolve(name, line, d);
+    std::string path;
+    try {
+      path = resolve(name, line, d);
+    } catch (const Error&) {
+      if (!diag_.allow_missing_files) throw;
+      diag_.missing_file(file(), line, d, "included file " + in_quotes(name) + " is missing");
+      // Parameters that go on after the Include belong to the missing file's last directive: left out with it.
+      PbrtParams rest(file(), d, line, files_.back().dir);
+      rest.parse(cur);
+      return;
+    }
     std::string text;
     try {
       text = read_file_maybe_gzip(path);
@@ -545,7 +598,13 @@ class PbrtParser {
       camera_.camera_type = type;
       camera_.camera = std::move(ps);
       camera_.camera_from_world = gs_.ctm[0];
-      if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, d);
+      camera_.camera_from_world_end.reset();
+      if (!same(gs_.ctm[0], gs_.ctm[1])) camera_.camera_from_world_end = gs_.ctm[1];
+      camera_.transform_start_time = gs_.transform_start;
+      camera_.transform_end_time = gs_.transform_end;
+      camera_.resolve = [this, dir = files_.back().dir, f = file()](const std::string& name, int l) {
+        return resolve_in(dir, f, name, l, "Camera");
+      };
       coord_systems_["camera"] = {gs_.ctm[0].inverse(), gs_.ctm[1].inverse()};
     } else if (d == "Film") {
       camera_.film_type = type;
@@ -572,8 +631,10 @@ class PbrtParser {
     const int depth = ps.get_int("maxdepth", kPbrtDefaultMaxDepth);
     if (depth < 0) ps.fail(line, "\"maxdepth\" must not be negative");
     scene_.max_recursion_depth = depth;
-    if (ps.has("regularize") && ps.get_bool("regularize", false))
+    if (ps.has("regularize") && ps.get_bool("regularize", false)) {
       diag_.warn(ps, "\"regularize\" is ignored (Kiln does not regularize near-specular paths)");
+      diag_.unsupported("pbrt path regularization (\"regularize\")", LoadOutcome::Ignored);
+    }
     if (const auto ls = ps.find_string("lightsampler"); ls && *ls != "power")
       diag_.warn(ps, "light sampler " + in_quotes(*ls) + ": Kiln chooses lights in proportion to their power");
     diag_.report_unused(ps);
@@ -581,18 +642,31 @@ class PbrtParser {
 
   void world_begin(int line) {
     if (world_) fail(line, "WorldBegin", "WorldBegin appears twice");
-    CameraDesc c = make_pbrt_camera(camera_, diag_);
+    if (!camera_.resolve)
+      camera_.resolve = [this](const std::string& name, int l) { return resolve(name, l, "Camera"); };
+    PbrtCamera c = make_pbrt_camera(camera_, diag_);
     for (const PbrtParams* ps : {&camera_.camera, &camera_.film, &camera_.sampler, &camera_.filter})
       diag_.report_unused(*ps);
-    scene_.cameras.push_back(c);
+    scene_.cameras.push_back(std::move(c.desc));
+    shutter_ = c.shutter;
     world_ = true;
     gs_.ctm = {Transform(), Transform()};
+    gs_.active = {true, true};
     coord_systems_["world"] = gs_.ctm;
   }
 
-  void motion_blur(int line, const std::string& d) {
-    warn(line, d, "the transform moves during the shutter interval; it is imported at its start (pbrt motion blur is not imported)");
-    diag_.unsupported("motion blur (pbrt ActiveTransform)");
+  // The motion of a shape or instance whose transform moves over the shutter, checked as Kiln will use it; empty
+  // when it does not move.
+  std::optional<TransformMotionDesc> motion_of(const Transform& start, const Transform& end, int line,
+                                               const std::string& context) {
+    if (same(start, end)) return std::nullopt;
+    TransformMotionDesc m{end, shutter_.to_kiln(gs_.transform_start), shutter_.to_kiln(gs_.transform_end)};
+    try {
+      AnimatedTransform(start, m.start_time, m.end, m.end_time);
+    } catch (const Error& e) {
+      fail(line, context, std::string("the transform moves over the shutter but cannot be interpolated: ") + e.what());
+    }
+    return m;
   }
 
   void finish() {
@@ -606,6 +680,7 @@ class PbrtParser {
       throw Error(root_path_, end, "missing WorldBegin: the file ends before the world block (no shapes or lights)");
     for (const Block& b : blocks_)
       diag_.warn(b.file, b.line, "AttributeBegin", "has no matching AttributeEnd before the end of the scene");
+    builder_.finish_named_materials();
   }
 
   // ---- shapes ----
@@ -619,7 +694,6 @@ class PbrtParser {
     PbrtShape s = make_pbrt_shape(type, ps, ctx);
     diag_.report_unused(ps);
     if (s.empty()) return;
-    if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "Shape");
     const Transform& to_world = gs_.ctm[0];
     const bool flipped = gs_.reverse_orientation != to_world.swaps_handedness();
     std::optional<PbrtAreaLight> light = gs_.area_light;
@@ -627,12 +701,18 @@ class PbrtParser {
       warn(line, ps.context(), "area lights inside ObjectBegin are not supported (pbrt-v4 ignores them too)");
       light.reset();
     }
+    std::optional<TransformMotionDesc> motion = shape_motion(line, ps.context(), light.has_value());
     const int material = gs_.material >= 0 ? gs_.material : builder_.default_material(file());
     if (s.mesh) {
       MeshDesc& m = *s.mesh;
       m.material = material;
       m.to_world = to_world;
       orient(m, flipped, gs_.reverse_orientation);
+      if (!m.normals.empty() && !to_world.invertible()) {
+        warn(line, ps.context(), "the transform is singular, so the normals \"N\" cannot follow it; face normals used");
+        diag_.unsupported("shading normals under a singular transform");
+        m.normals.clear();
+      }
       if (light) {
         m.emission = light->radiance;
         m.two_sided_emission = light->two_sided;
@@ -641,10 +721,12 @@ class PbrtParser {
         m.visible = false;
         objects_[*current_object_].meshes.push_back(int(scene_.meshes.size()));
       }
+      if (motion) return moving_mesh(std::move(m), *motion);
       scene_.meshes.push_back(std::move(m));
       return;
     }
     if (s.quadric) {
+      if (motion) unmoved_quadric(line, ps.context());
       QuadricDesc& q = *s.quadric;
       q.material = material;
       q.to_world = to_world;
@@ -659,21 +741,68 @@ class PbrtParser {
     SphereDesc sp = *s.sphere;
     sp.material = material;
     sp.to_world = to_world;
+    if (motion && sp.alpha.cuts()) {  // built as a quadric sphere (pbrt's (u, v) for the alpha texture)
+      unmoved_quadric(line, ps.context());
+      motion.reset();
+    }
+    sp.to_world_motion = motion;
+    if (!to_world.invertible()) fail(line, ps.context(), "the transform is singular: a sphere needs its inverse");
     if (light) {
       if (flipped) {
         warn(line, ps.context(),
              "a sphere light facing inwards (ReverseOrientation) is not supported; it does not emit");
-        diag_.unsupported("inward-facing sphere lights");
+        diag_.unsupported("inward-facing sphere lights", LoadOutcome::Ignored);
       } else {
         sp.emission = light->radiance;
-        if (light->two_sided)
+        if (light->two_sided) {
           warn(line, ps.context(), "a two-sided sphere light emits only outwards in Kiln (its inside is dark)");
+          diag_.unsupported("two-sided sphere lights (the inside is dark)");
+        }
       }
     }
     if (current_object_)
       objects_[*current_object_].spheres.push_back(sp);
     else
       scene_.spheres.push_back(sp);
+  }
+
+  // The shape's motion when its transform moves over the shutter. Kiln does not move emitters (their light samples
+  // would not follow) nor shapes inside an object definition (instances move as a whole): those stay at the start.
+  std::optional<TransformMotionDesc> shape_motion(int line, const std::string& context, bool emits) {
+    if (same(gs_.ctm[0], gs_.ctm[1])) return std::nullopt;
+    if (emits || current_object_) {
+      warn(line, context,
+           std::string("the transform moves over the shutter, but Kiln does not move ") +
+               (emits ? "area lights" : "shapes inside ObjectBegin (move the ObjectInstance)") +
+               "; it is rendered at its start transform");
+      diag_.unsupported(emits ? "moving area lights (pbrt ActiveTransform on an emitter)"
+                              : "moving shapes inside object definitions (pbrt ActiveTransform in ObjectBegin)");
+      return std::nullopt;
+    }
+    return motion_of(gs_.ctm[0], gs_.ctm[1], line, context);
+  }
+
+  // Disks, cylinders, partial spheres and spheres with an alpha cut-out are quadric user geometry, which moves by
+  // translation (MotionBlur) only: under an animated transform it stays at its start.
+  void unmoved_quadric(int line, const std::string& context) {
+    warn(line, context,
+         "the transform moves over the shutter, but Kiln does not move disks, cylinders, partial spheres or spheres "
+         "with \"alpha\" by an animated transform; it is rendered at its start transform");
+    diag_.unsupported("moving quadrics (pbrt ActiveTransform on a disk, cylinder, partial or alpha-cut sphere)");
+  }
+
+  // A moving mesh is rendered as an instance of its object-space self whose transform moves.
+  void moving_mesh(MeshDesc m, const TransformMotionDesc& motion) {
+    m.visible = false;
+    m.is_instance_base = true;
+    InstanceDesc inst;
+    inst.name = m.name;
+    inst.base_mesh = int(scene_.meshes.size());
+    inst.to_world = m.to_world;
+    inst.to_world_motion = motion;
+    inst.material = m.material;
+    scene_.meshes.push_back(std::move(m));
+    scene_.instances.push_back(std::move(inst));
   }
 
   // pbrt's emitting (and refracting) side: the side of the shading normals "N" when the mesh has them (negated by
@@ -704,10 +833,16 @@ class PbrtParser {
     const auto it = objects_.find(name);
     if (it == objects_.end())
       fail(line, "ObjectInstance", "no object named " + in_quotes(name) + " (ObjectBegin defines them)");
-    if (!same(gs_.ctm[0], gs_.ctm[1])) motion_blur(line, "ObjectInstance");
     const Transform& placement = gs_.ctm[0];
+    if (!placement.invertible())
+      fail(line, "ObjectInstance", "the instance transform is singular: Kiln traces instances through its inverse");
     const std::string label = "ObjectInstance " + in_quotes(name) + " (" + fs::path(file()).filename().string() + ":" +
                               std::to_string(line) + ")";
+    // A moving placement moves every shape of the object with it.
+    const auto moved = [&](const Transform& object_to_world) -> std::optional<TransformMotionDesc> {
+      if (same(gs_.ctm[0], gs_.ctm[1])) return std::nullopt;
+      return motion_of(placement * object_to_world, gs_.ctm[1] * object_to_world, line, "ObjectInstance");
+    };
     for (int mi : it->second.meshes) {
       MeshDesc& base = scene_.meshes[size_t(mi)];
       base.is_instance_base = true;
@@ -715,12 +850,18 @@ class PbrtParser {
       inst.name = label;
       inst.base_mesh = mi;
       inst.to_world = placement * base.to_world;
-      if (!finite_transform(inst.to_world))
-        fail(line, "ObjectInstance", "the instance transform overflows single precision");
+      if (!finite_transform(inst.to_world) || !inst.to_world.invertible())
+        fail(line, "ObjectInstance", "the instance transform overflows single precision or is singular");
+      inst.to_world_motion = moved(base.to_world);
       inst.material = base.material;
       scene_.instances.push_back(inst);
     }
+    const bool cut_sphere = std::any_of(it->second.spheres.begin(), it->second.spheres.end(),
+                                        [](const SphereDesc& s) { return s.alpha.cuts(); });
+    if ((cut_sphere || !it->second.quadrics.empty()) && !same(gs_.ctm[0], gs_.ctm[1]))
+      unmoved_quadric(line, "ObjectInstance");
     for (SphereDesc s : it->second.spheres) {
+      if (!s.alpha.cuts()) s.to_world_motion = moved(s.to_world);
       s.to_world = placement * s.to_world;
       s.name = label + " " + s.name;
       scene_.spheres.push_back(s);
@@ -743,7 +884,7 @@ class PbrtParser {
   std::vector<OpenFile> files_;
   GraphicsState gs_;
   std::vector<Block> blocks_;
-  std::array<bool, 2> active_ = {true, true};
+  PbrtShutter shutter_;
   bool world_ = false, have_camera_ = false, warned_transform_block_ = false;
   PbrtCameraInput camera_;
   std::map<std::string, TransformPair> coord_systems_;
@@ -754,8 +895,12 @@ class PbrtParser {
 
 }  // namespace
 
-SceneDesc parse_pbrt(std::string text, const std::string& path) { return PbrtParser(path).run(std::move(text)); }
+SceneDesc parse_pbrt(std::string text, const std::string& path, const PbrtOptions& options) {
+  return PbrtParser(path, options).run(std::move(text));
+}
 
-SceneDesc load_pbrt(const std::string& path) { return parse_pbrt(read_file_maybe_gzip(path), path); }
+SceneDesc load_pbrt(const std::string& path, const PbrtOptions& options) {
+  return parse_pbrt(read_file_maybe_gzip(path), path, options);
+}
 
 }  // namespace kiln

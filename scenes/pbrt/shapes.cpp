@@ -92,9 +92,11 @@ MeshDesc bilinear_mesh(const PbrtParams& ps, const std::string& name, PbrtDiagno
     if (len > 0.0f && std::abs(dot(p11 - p00, n / len)) > kBilinearPlanarityTolerance * diag_len) ++non_planar;
     m.indices.insert(m.indices.end(), {v00, v10, v11, v00, v11, v01});
   }
-  if (non_planar > 0)
+  if (non_planar > 0) {
     diag.warn(ps, std::to_string(non_planar) + " of " + std::to_string(quads.size() / 4) +
                       " bilinear patches are not planar; each is rendered as two flat triangles");
+    diag.unsupported("non-planar bilinear patches (two flat triangles each)");
+  }
   return m;
 }
 
@@ -113,10 +115,19 @@ MeshDesc loop_mesh(const PbrtParams& ps, const std::string& name) {
   return m;
 }
 
-MeshDesc ply_mesh(const PbrtParams& ps, const std::string& name, const PbrtShapeContext& ctx) {
+// Empty when the file is missing and missing files are allowed (reported).
+std::optional<MeshDesc> ply_mesh(const PbrtParams& ps, const std::string& name, const PbrtShapeContext& ctx) {
   const auto file = ps.find_string("filename");
   if (!file || file->empty()) ps.fail(ps.line(), "needs \"string filename\"");
-  const std::string path = ctx.resolve(*file, ps.line());
+  std::string path;
+  try {
+    path = ctx.resolve(*file, ps.line());
+  } catch (const Error&) {
+    if (!ctx.diagnostics.allow_missing_files) throw;
+    for (const PbrtParam& p : ps.params()) p.used = true;
+    ctx.diagnostics.missing_file(ps.file(), ps.line(), ps.context(), "PLY mesh " + in_quotes(*file) + " is missing");
+    return std::nullopt;
+  }
   MeshDesc m;
   try {
     m = parse_ply(read_file_maybe_gzip(path), path);
@@ -164,8 +175,10 @@ PbrtShape make_pbrt_shape(const std::string& type, const PbrtParams& ps, const P
   PbrtShape out;
   if (type == "trianglemesh")
     out.mesh = triangle_mesh(ps, name);
-  else if (type == "plymesh")
+  else if (type == "plymesh") {
     out.mesh = ply_mesh(ps, name, ctx);
+    if (!out.mesh) return out;
+  }
   else if (type == "loopsubdiv")
     out.mesh = loop_mesh(ps, name);
   else if (type == "bilinearmesh")
@@ -185,7 +198,7 @@ PbrtShape make_pbrt_shape(const std::string& type, const PbrtParams& ps, const P
     return out;
   } else {
     ctx.diagnostics.warn(ps, "shape \"" + type + "\" is not supported; skipped");
-    ctx.diagnostics.unsupported("pbrt shape \"" + type + "\"");
+    ctx.diagnostics.unsupported("pbrt shape \"" + type + "\"", LoadOutcome::Ignored);
     for (const PbrtParam& p : ps.params()) p.used = true;  // one warning for the shape, not one per parameter
     return out;
   }

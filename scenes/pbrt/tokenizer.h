@@ -37,9 +37,8 @@ class PbrtTokenizer {
   int line_ = 1;
 };
 
-// One file's tokens with one token of lookahead. A directive and its parameter list are read from one cursor: the
-// end of an included file ends whatever directive is open (pbrt's file stack would continue it in the including
-// file, which no sane scene relies on).
+// One file's tokens with one token of lookahead. A parameter list that an included file ends may go on in the
+// including file's cursor (pbrt reads one token stream across files; the parser continues it there).
 class PbrtCursor {
  public:
   explicit PbrtCursor(PbrtTokenizer t) : tok_(std::move(t)) {}

@@ -136,6 +136,15 @@ TEST_F(CliBadInput, PbrtMissingInclude) {
   expect_bad_input(bad_pbrt("missing_include.pbrt"), "line 4 (Include): cannot find \"geometry/not_there.pbrt\"");
 }
 
+TEST_F(CliBadInput, PbrtLensFileWithTooFewColumns) {
+  expect_bad_input(bad_pbrt("lens_too_few_columns.pbrt"), "three_columns.dat: line 4: has 3 values");
+}
+
+TEST_F(CliBadInput, PbrtSingularTransformWhereAnInverseIsNeeded) {
+  expect_bad_input(bad_pbrt("singular_camera.pbrt"), "line 4 (Camera \"perspective\"): the camera transform is singular");
+  expect_bad_input(bad_pbrt("singular_sphere.pbrt"), "line 7 (Shape \"sphere\"): the transform is singular");
+}
+
 // A pbrt scene of one sphere whose world ends with `world` (from line 6 on).
 std::string pbrt_scene(const std::string& world) {
   return "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
@@ -288,9 +297,14 @@ TEST(Cli, PbrtSceneRendersAndEveryCommandReadsIt) {
 
   const RunResult info = run_kiln("info " + data + "unsupported.pbrt");
   EXPECT_EQ(info.exit_code, 0) << info.output;
-  EXPECT_NE(info.output.find("warning: " + data + "unsupported.pbrt: line 15 (Shape \"curve\")"), std::string::npos)
+  // One self-contained line per directive not rendered as written: outcome, file:line, directive, [feature].
+  EXPECT_NE(info.output.find("\nignored: " + data + "unsupported.pbrt:15: Shape \"curve\" [pbrt shape \"curve\"]: "),
+            std::string::npos)
       << info.output;
-  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"curve\""), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("\nsubstituted: " + data + "unsupported.pbrt:14: Material \"hair\" [pbrt material"),
+            std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"curve\" (1 directive)"), std::string::npos) << info.output;
   const RunResult all = run_kiln("info " + data + "all_directives.pbrt");
   EXPECT_NE(all.output.find("infinite 1"), std::string::npos) << all.output;
 
@@ -300,6 +314,70 @@ TEST(Cli, PbrtSceneRendersAndEveryCommandReadsIt) {
   const RunResult prof = run_kiln("profile " + data + "furnace_sphere.pbrt --spp 1 --subdivide 2 --json");
   EXPECT_EQ(prof.exit_code, 0) << prof.output;
   EXPECT_NE(prof.output.find("\"triangles\": 128"), std::string::npos) << prof.output;
+}
+
+// kiln info --json: every pbrt directive's outcome with its file and line (issue 27 item 6), counted per kind.
+TEST(Cli, InfoJsonListsWhatEachPbrtDirectiveBecame) {
+  const std::string file = std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/unsupported.pbrt";
+  const RunResult r = run_kiln("info --json " + file);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  const auto outcome_at = [&](int line, const std::string& directive) {
+    for (const auto& n : j["notes"])
+      if (n["line"] == line && n["directive"] == directive && n["outcome"] != "remark") return n["outcome"].get<std::string>();
+    return std::string("none");
+  };
+  EXPECT_EQ(outcome_at(15, "Shape \"curve\""), "ignored");
+  EXPECT_EQ(outcome_at(19, "LightSource \"goniometric\""), "ignored");
+  EXPECT_EQ(outcome_at(14, "Material \"hair\""), "substituted");
+  EXPECT_EQ(outcome_at(6, "PixelFilter \"sinc\""), "substituted");
+  EXPECT_EQ(outcome_at(13, "Shape \"trianglemesh\""), "ignored") << "its unused parameter";
+  EXPECT_EQ(j["directives"]["Shape \"sphere\""]["count"], 2);
+  EXPECT_EQ(j["directives"]["Shape \"sphere\""]["rendered_as_written"], 2) << "the sphere light and the moving sphere";
+  EXPECT_EQ(j["directives"]["Shape \"curve\""]["first"], file + ":15");
+  // Every warning is some directive's note (nothing is reported only as free text), and every feature Kiln does not
+  // render as written is some directive's substituted or ignored note.
+  for (const auto& w : j["warnings"]) {
+    const std::string warning = w.get<std::string>();
+    bool found = false;
+    for (const auto& n : j["notes"]) {
+      const std::string at = ": line " + std::to_string(n["line"].get<int>());
+      found |= warning.ends_with(": " + n["message"].get<std::string>()) &&
+               (warning.find(at + " (") != std::string::npos || warning.find(at + ": ") != std::string::npos);
+    }
+    EXPECT_TRUE(found) << "a warning with no note: " << warning;
+  }
+  for (const auto& u : j["unsupported"]) {
+    bool found = false;
+    for (const auto& n : j["notes"]) found |= n["feature"] == u && n["outcome"] != "remark";
+    EXPECT_TRUE(found) << "a feature with no directive: " << u;
+  }
+}
+
+// Missing large files stop a load, unless --allow-missing (for surveys): then each is an ignored note.
+TEST(Cli, InfoAllowMissingLeavesMissingFilesOut) {
+  const std::string file = std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/missing_files.pbrt";
+  const RunResult strict = run_kiln("info " + file);
+  EXPECT_EQ(strict.exit_code, 2) << strict.output;
+  EXPECT_NE(strict.output.find("line 6 (Shape \"plymesh\"): cannot find"), std::string::npos) << strict.output;
+  const RunResult r = run_kiln("info --json --allow-missing " + file);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  int missing = 0;
+  for (const auto& n : j["notes"])
+    if (n["outcome"] == "ignored" && n["feature"].get<std::string>().find("missing") != std::string::npos) {
+      ++missing;
+      EXPECT_TRUE(n["line"] == 6 || n["line"] == 7) << n.dump();
+    }
+  EXPECT_EQ(missing, 2) << r.output;
+  EXPECT_EQ(j["spheres"], 1);
+}
+
+// Animated instances, spheres and a moving camera: Embree and the in-house BVH agree ray by ray at every time.
+TEST(Cli, CheckBvhAgreesOnPbrtMotion) {
+  const RunResult r = run_kiln("check-bvh " + std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/moving.pbrt --rays 50000");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"passed\": true"), std::string::npos) << r.output;
 }
 
 TEST(Cli, InfoSucceedsOnEveryCourseScene) {
