@@ -13,6 +13,7 @@
 #include "renderer/cli/converge.h"
 #include "renderer/analysis/convergence.h"
 #include "renderer/image_io/image_io.h"
+#include "renderer/integrators/rules.h"
 #include "renderer/render/render.h"
 #include "renderer/world/world.h"
 #include "scenes/loader.h"
@@ -106,8 +107,14 @@ int cmd_converge(const ConvergeArgs& args) {
   wo.accel = args.accel;
   const auto world = build_world(scene, wo);
   const Camera camera(cd);
+  // A strategy of Kiln's path tracer, volumetric when the scene has media.
+  const auto strategy = [&](const std::string& n) {
+    NamedStrategy st = make_strategy(n, base, world->features);
+    st.settings.method = kiln_path_integrator(std::get<PathSettings>(st.settings.method), scene, cd).method;
+    return st;
+  };
   std::vector<NamedStrategy> strategies;
-  for (const std::string& n : names) strategies.push_back(make_strategy(n, base, world->features));
+  for (const std::string& n : names) strategies.push_back(strategy(n));
 
   const SignalGuard signals;
   std::filesystem::create_directories(args.out_dir);
@@ -124,7 +131,7 @@ int cmd_converge(const ConvergeArgs& args) {
                       std::to_string(camera.height()) + " (check --resolution-scale)");
     reference_note = "reference " + std::filesystem::path(*args.reference).filename().string();
   } else {
-    const NamedStrategy ref_strategy = make_strategy("mis", base, world->features);
+    const NamedStrategy ref_strategy = strategy("mis");
     const std::string path = (dir / "reference.exr").string();
     if (!args.quiet)
       std::fprintf(stderr, "kiln: converge: no --reference given; rendering one with mis at %u spp (%dx%d) to %s\n",

@@ -14,9 +14,18 @@ const char* name_of(DirectionSampling d) {
 
 std::string depth_of(int max_depth) { return max_depth < 0 ? "unlimited" : std::to_string(max_depth); }
 
-std::string describe_method(const PathSettings& s) {
-  return std::string("Kiln path tracer: ") + name_of(s.directions) + (s.nee ? (s.mis ? "+nee+mis" : "+nee") : "") +
+std::string describe_strategy(const PathSettings& s) {
+  return std::string(name_of(s.directions)) + (s.nee ? (s.mis ? "+nee+mis" : "+nee") : "") +
          (s.russian_roulette ? "+rr" : "") + ", max depth " + depth_of(s.max_depth);
+}
+
+std::string describe_method(const PathSettings& s) { return "Kiln path tracer: " + describe_strategy(s); }
+
+std::string describe_method(const VolPathSettings& s) {
+  std::string d = "Kiln volumetric path tracer: " + describe_strategy(s.path);
+  if (!s.path.channel_mis) d += ", one channel per path (no channel MIS)";
+  if (s.camera_medium >= 0) d += ", camera in medium " + std::to_string(s.camera_medium);
+  return d;
 }
 
 std::string describe_method(const CoursePathSettings& s) {
@@ -46,6 +55,8 @@ Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Vec2f
   Rgb L;
   if (const auto* p = std::get_if<PathSettings>(&s.method))
     L = trace_path(world, *p, s.features, ray, film, sampler, c);
+  else if (const auto* v = std::get_if<VolPathSettings>(&s.method))
+    L = trace_vol_path(world, *v, s.features, ray, film, sampler, c);
   else if (const auto* cp = std::get_if<CoursePathSettings>(&s.method))
     L = trace_course_path(world, *cp, s.features, ray, film, sampler, c);
   else

@@ -15,6 +15,7 @@ std::string describe_features(uint32_t mask) {
       {kFeatureTextures, "textures"},       {kFeatureDepthOfField, "depth-of-field"},
       {kFeatureInfiniteLights, "infinite-lights"}, {kFeatureMotionBlur, "motion-blur"},
       {kFeatureEnvironmentMap, "environment-map"},  {kFeatureBackfaceCulling, "backface-culling"},
+      {kFeatureMedia, "media"},
   };
   std::string s;
   for (const auto& [bit, name] : kNames)

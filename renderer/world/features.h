@@ -26,6 +26,7 @@ enum Feature : uint32_t {
   kFeatureMotionBlur = 1u << 15,      // moving shapes: camera rays take a time sample, accelerators are time-varying
   kFeatureEnvironmentMap = 1u << 16,  // an image-based infinite light (lat-long environment map)
   kFeatureBackfaceCulling = 1u << 17, // camera rays skip triangles facing away from them (course rules)
+  kFeatureMedia = 1u << 18,           // participating media: the volumetric path tracer renders the scene
   kFeatureAll = 0xffffffffu,
 };
 

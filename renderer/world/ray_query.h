@@ -41,6 +41,16 @@ inline bool query_camera_culled(const World& w, const Ray& r, Hit& hit, RayCount
   return false;
 }
 
+// A shadow ray that needs its closest hit: through participating media, where boundaries are crossed, not
+// occluding (the volumetric path tracer's transmittance rays).
+inline bool query_shadow_hit(const World& w, const Ray& r, Hit& hit, RayCounters& c) {
+  const uint64_t t0 = __rdtsc();
+  const bool h = w.accel->intersect(r, hit);
+  c.shadow_cycles += __rdtsc() - t0;
+  ++c.shadow;
+  return h;
+}
+
 inline bool query_occluded(const World& w, const Ray& r, RayCounters& c) {
   const uint64_t t0 = __rdtsc();
   const bool o = w.accel->occluded(r);

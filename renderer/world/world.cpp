@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "renderer/image_io/image_io.h"
 #include "renderer/texture/scene_textures.h"
+#include "renderer/world/world_media.h"
 #include "scenes/material_mapping.h"
 
 namespace kiln {
@@ -129,12 +130,26 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   w.stats.materials = w.materials.size();
   if (!w.ambient.is_black()) w.features |= kFeatureAmbient;
 
-  // Surfaces whose material only marks a boundary (pbrt's "interface") change no ray: without participating media
-  // they are left out of the geometry, so they neither stop camera rays nor shadow lights.
-  const auto invisible = [&](int material, const std::optional<Rgb>& emission) {
+  const bool media = scene_uses_media(scene);
+  if (media) {
+    build_world_media(scene, w);
+    w.features |= kFeatureMedia;
+  }
+  // The media on a shape's sides; a transition only when the scene's media are built.
+  const auto medium_interface = [&](const MediumInterfaceDesc& d, const std::string& name) {
+    if (!media) return MediumInterface{};
+    for (const int m : {d.inside, d.outside})
+      if (m < -1 || m >= int(w.media.size())) throw Error(scene.source_path, name, "names a medium that does not exist");
+    if (d.inside != d.outside) ++w.stats.medium_boundaries;
+    return MediumInterface{d.inside, d.outside};
+  };
+  // Surfaces whose material only marks a boundary (pbrt's "interface") change no ray unless they bound a medium:
+  // those are left out of the geometry, so they neither stop camera rays nor shadow lights.
+  const auto invisible = [&](int material, const std::optional<Rgb>& emission, const MediumInterfaceDesc& sides) {
     const bool emits = emission && !emission->is_black();
     if (emits || material < 0 || size_t(material) >= w.materials.size() || !w.materials[size_t(material)].passes_through)
       return false;
+    if (media && sides.inside != sides.outside) return false;
     ++w.stats.interface_shapes;
     return true;
   };
@@ -159,7 +174,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     }
     if (!m.visible || m.indices.empty()) continue;
     check_material(scene, m.material, m.name, m.emission.has_value());
-    if (invisible(m.material, m.emission)) continue;
+    if (invisible(m.material, m.emission, m.media)) continue;
     // Instance bases stay in the description: their prototype copy above was taken from it.
     MeshDesc* take = consumable && !m.is_instance_base ? &consumable->meshes[i] : nullptr;
     const bool has_uvs = !m.uvs.empty() && m.uvs.size() == m.positions.size();  // before `take` empties m
@@ -168,6 +183,7 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
                            : TriangleMesh{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
     ShapeData sd;
     sd.material = m.material;
+    sd.media = medium_interface(m.media, m.name);
     sd.smooth = m.smooth || !m.normals.empty();
     sd.textures = bind_textures(m.textures, m.material, m.to_world);
     if (sd.textures >= 0 && has_uvs) {
@@ -204,9 +220,10 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
   }
   for (const SphereDesc& s : scene.spheres) {
     check_material(scene, s.material, s.name, s.emission.has_value());
-    if (invisible(s.material, s.emission)) continue;
+    if (invisible(s.material, s.emission, s.media)) continue;
     ShapeData sd;
     sd.material = s.material;
+    sd.media = medium_interface(s.media, s.name);
     sd.textures = bind_textures(s.textures, s.material, s.to_world);
     const bool emits = s.emission && !s.emission->is_black();
     if (emits && !(s.radius > 0.0f)) {
@@ -236,7 +253,8 @@ std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consu
     ShapeData sd;
     sd.material = inst.material >= 0 ? inst.material : base.material;
     check_material(scene, sd.material, inst.name, false);
-    if (invisible(sd.material, std::nullopt)) continue;
+    if (invisible(sd.material, std::nullopt, inst.media)) continue;
+    sd.media = medium_interface(inst.media, inst.name);
     sd.smooth = inst.smooth.value_or(base.smooth || !base.normals.empty());
     if (sd.smooth) {
       int& pn = prototype_normals[size_t(proto)];

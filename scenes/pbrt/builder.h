@@ -1,9 +1,11 @@
 // Object creation for the pbrt-v4 loader. As in pbrt-v4, reading the file (scenes/pbrt/parser.cpp: tokens,
 // directives, blocks, transforms, the graphics state) is kept apart from making the scene's objects out of a
-// directive's parameter list: materials (scenes/pbrt/materials.cpp), textures (scenes/pbrt/textures.cpp) and lights
-// (scenes/pbrt/lights.cpp), each written into the SceneDesc. Shapes and cameras are made by scenes/pbrt/shapes.h and
-// scenes/pbrt/camera.h. Everything a builder cannot render is reported through PbrtDiagnostics.
+// directive's parameter list: materials (scenes/pbrt/materials.cpp), textures (scenes/pbrt/textures.cpp), lights
+// (scenes/pbrt/lights.cpp) and media (scenes/pbrt/media.cpp), each written into the SceneDesc. Shapes and cameras
+// are made by scenes/pbrt/shapes.h and scenes/pbrt/camera.h. Everything a builder cannot render is reported through
+// PbrtDiagnostics.
 #pragma once
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -21,6 +23,9 @@ inline constexpr float kPbrtDefaultDielectricEta = 1.5f;
 inline constexpr float kPbrtDefaultSpotConeAngle = 30.0f, kPbrtDefaultSpotConeDelta = 5.0f;
 inline constexpr float kPbrtDefaultCoatThickness = 0.01f;
 inline constexpr int kPbrtDefaultCoatMaxDepth = 10;
+
+// Turns a file name written in the scene into a path (throws kiln::Error naming `line` when it cannot be found).
+using PbrtResolve = std::function<std::string(const std::string& name, int line)>;
 
 // An AreaLightSource in effect: the shapes that follow emit it.
 struct PbrtAreaLight {
@@ -61,6 +66,12 @@ class PbrtBuilder {
   // AreaLightSource: what the shapes that follow emit; empty for area lights Kiln does not render (warned).
   std::optional<PbrtAreaLight> make_area_light(const std::string& type, const PbrtParams& ps);
 
+  // Media (scenes/pbrt/media.cpp): MakeNamedMedium into SceneDesc::media. medium_to_world: the transform in effect.
+  void make_medium(const std::string& name, const PbrtParams& ps, const Transform& medium_to_world,
+                   const PbrtResolve& resolve);
+  // The index into SceneDesc::media of a named medium; -1 for a medium Kiln leaves empty; none when undefined.
+  std::optional<int> named_medium(const std::string& name) const;
+
  private:
   // Material parameters that may name a texture: constant textures are read, others warned (the default is used).
   float float_param(const PbrtParams& ps, const std::string& name, float def);
@@ -77,6 +88,7 @@ class PbrtBuilder {
   SceneDesc& scene_;
   PbrtDiagnostics diag_;
   std::map<std::string, int> named_materials_;
+  std::map<std::string, int> named_media_;
   std::map<std::string, PbrtTextureDef> textures_;
   int default_material_ = -1;
 };
