@@ -15,7 +15,7 @@
 
 namespace kiln {
 
-// Per-thread tracking statistics (--stats: steps per ray, majorant efficiency).
+// Per-thread tracking statistics (kiln render --stats, kiln profile): steps per ray and majorant efficiency.
 struct TrackingCounters {
   uint64_t rays = 0;           // ray segments tracked through a medium
   uint64_t collisions = 0;     // tentative collisions (tracking steps)
@@ -25,6 +25,10 @@ struct TrackingCounters {
     collisions += o.collisions;
     extinction_ratio += o.extinction_ratio;
   }
+  double steps_per_ray() const { return rays ? double(collisions) / double(rays) : 0.0; }
+  // The mean of sigma_t / sigma_maj at the collisions: 1 when every collision is real (a homogeneous medium), low
+  // when majorants are loose and tracking wastes steps on null collisions.
+  double majorant_efficiency() const { return collisions ? extinction_ratio / double(collisions) : 0.0; }
 };
 
 // exp(-sigma * dt) per channel, with an infinite dt through a channel of zero extinction giving 1 (not NaN).

@@ -32,6 +32,23 @@ const char* material_type_name(MaterialType t) {
   return "?";
 }
 
+// Every medium with what it was built into, the shapes bounding media and the cameras inside one; media the scene
+// defines but never uses are not built.
+void print_media(const SceneDesc& s, const World& w) {
+  if (s.media.empty()) return;
+  const WorldStats& ws = w.stats;
+  std::printf("media: %zu defined, %s\n", s.media.size(),
+              w.media.empty() ? "none used (not built)" : "built for the volumetric path tracer");
+  for (size_t i = 0; i < s.media.size(); ++i)
+    std::printf("  medium %zu \"%s\": %s\n", i, s.media[i].name.c_str(),
+                i < ws.media.size() ? ws.media[i].c_str() : "(not built)");
+  if (w.media.empty()) return;
+  std::printf("  %zu shapes bound media, majorant grids %zu voxels, NanoVDB grids %.1f MiB\n", ws.medium_boundaries,
+              ws.majorant_voxels, double(ws.medium_grid_bytes) / (1024.0 * 1024.0));
+  for (const CameraDesc& c : s.cameras)
+    if (c.medium >= 0) std::printf("  camera %s sits in medium %d\n", c.id.c_str(), c.medium);
+}
+
 }  // namespace
 
 int cmd_info(const std::string& path, int subdivide, const std::optional<std::string>& rules_override) {
@@ -78,6 +95,7 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
       s.ambient_light.is_black() ? "off" : "on", ws.point_lights, ws.spot_lights, ws.directional_lights, ws.area_lights,
       ws.mesh_lights, ws.sphere_lights, s.env_lights.size(), s.infinite_lights.size());
   std::printf("features: %s\n", describe_features(world->features).c_str());
+  print_media(s, *world);
   std::printf("needs: spheres %s, instances %s, textures %s, cone sampler %s, time sample %s\n",
               (world->features & kFeatureSpheres) ? "yes" : "no", (world->features & kFeatureInstances) ? "yes" : "no",
               (world->features & kFeatureTextures) ? "yes" : "no", ws.cone_sampler_built ? "yes" : "no",

@@ -57,6 +57,15 @@ nlohmann::json texture_stats_json(const World& w) {
           {"files", c.files}};
 }
 
+// Tracking through media: segments tracked (camera, bounce and light rays inside a medium), tentative collisions
+// per segment, and the mean sigma_t / sigma_maj at them.
+nlohmann::json media_stats_json(const TrackingCounters& t) {
+  return {{"tracked_segments", t.rays},
+          {"collisions", t.collisions},
+          {"steps_per_segment", t.steps_per_ray()},
+          {"majorant_efficiency", t.majorant_efficiency()}};
+}
+
 nlohmann::json world_stats_json(const World& w) {
   const WorldStats& s = w.stats;
   return {{"textures", texture_stats_json(w)},
@@ -65,6 +74,16 @@ nlohmann::json world_stats_json(const World& w) {
           {"spheres", s.spheres},
           {"instances", s.instances},
           {"interface_shapes_left_out", s.interface_shapes},
+          {"media",
+           {{"built", !w.media.empty()},
+            {"homogeneous", s.homogeneous_media},
+            {"uniformgrid", s.grid_media},
+            {"rgbgrid", s.rgb_grid_media},
+            {"nanovdb", s.nanovdb_media},
+            {"boundaries", s.medium_boundaries},
+            {"majorant_voxels", s.majorant_voxels},
+            {"grid_bytes", s.medium_grid_bytes},
+            {"media", s.media}}},
           {"materials", s.materials},
           {"compiled_materials", s.compiled_materials},
           {"lights",
@@ -335,6 +354,10 @@ int cmd_render(const RenderArgs& args) {
                    "ray queries\n",
                    rs.seconds, mrays, (unsigned long long)rs.rays.primary, (unsigned long long)rs.rays.shadow,
                    (unsigned long long)rs.rays.indirect, 100.0 * query_share);
+    if (!args.quiet && !world->media.empty())
+      std::fprintf(stderr, "kiln: media: %llu tracked segments, %.2f steps per segment, majorant efficiency %.2f\n",
+                   (unsigned long long)rs.rays.media.rays, rs.rays.media.steps_per_ray(),
+                   rs.rays.media.majorant_efficiency());
 
     std::printf("%s\n%s\n", exr.c_str(), png.c_str());
     std::fflush(stdout);
@@ -359,6 +382,8 @@ int cmd_render(const RenderArgs& args) {
     if (ro.adaptive)
       cam["adaptive"] = {{"threshold", ro.adaptive->threshold}, {"min_spp", ro.adaptive->min_samples()},
                          {"converged_fraction", counts.converged_fraction}};
+    if (!world->media.empty())
+      cam["media"] = media_stats_json(rs.rays.media);
     if (final_error)
       cam["error"] = {{"reference", *args.reference}, {"mse", final_error->mse}, {"relmse", final_error->rel_mse},
                       {"rmse", final_error->rmse}, {"csv", csv_path}};

@@ -95,6 +95,8 @@ const MeasuredMedium* measured_medium(const std::string& name) {
   return nullptr;
 }
 
+Rgb clamp_zero(Rgb c) { return {std::max(0.0f, c.r), std::max(0.0f, c.g), std::max(0.0f, c.b)}; }
+
 // Planck's law, up to a constant factor, at a wavelength in nanometres.
 double planck(double lambda_nm, double kelvin) {
   constexpr double kC2 = 1.4387768775e7;  // h c / k in nm K
@@ -103,24 +105,31 @@ double planck(double lambda_nm, double kelvin) {
 }
 
 // pbrt-v4's temperature emission: a blackbody spectrum normalised to 1 at its peak (not to unit luminance), as the
-// RGB film sees it (luminance = its integral against y-bar over that of a flat spectrum of 1).
-Rgb peak_normalised_blackbody(float kelvin) {
-  const auto rgb = blackbody_rgb(kelvin);
-  if (!rgb) return Rgb(0.0f);
-  constexpr double kWienNmK = 2.897771955e6;  // Wien's displacement constant in nm K
-  const double peak = planck(kWienNmK / kelvin, kelvin);
-  double y = 0.0, y_flat = 0.0;
-  for (int l = 360; l <= 830; ++l) {
-    const double ybar = cie_xyz_matching(float(l)).y;
-    y += planck(l, kelvin) / peak * ybar;
-    y_flat += ybar;
-  }
-  return *rgb * float(y / y_flat);
-}
-
+// RGB film records it: XYZ against the colour-matching functions over the integral of y-bar (a flat spectrum of 1
+// has luminance 1), then linear sRGB. Tabulated at the temperatures of media/emission_table.h.
 std::vector<Rgb> blackbody_table() {
+  constexpr int kFirstNm = 360, kLastNm = 830;
+  constexpr double kWienNmK = 2.897771955e6;  // Wien's displacement constant in nm K
+  std::vector<Vec3f> cmf;
+  double y_integral = 0.0;
+  for (int l = kFirstNm; l <= kLastNm; ++l) {
+    cmf.push_back(cie_xyz_matching(float(l)));
+    y_integral += cmf.back().y;
+  }
   std::vector<Rgb> t(kEmissionTableSize);
-  for (int i = 0; i < kEmissionTableSize; ++i) t[size_t(i)] = peak_normalised_blackbody(emission_table_kelvin(i));
+  for (int i = 0; i < kEmissionTableSize; ++i) {
+    const double kelvin = emission_table_kelvin(i), peak = planck(kWienNmK / kelvin, kelvin);
+    double xyz[3] = {0.0, 0.0, 0.0};
+    for (int l = kFirstNm; l <= kLastNm; ++l) {
+      const double b = planck(l, kelvin) / peak;
+      const Vec3f& m = cmf[size_t(l - kFirstNm)];
+      xyz[0] += b * m.x;
+      xyz[1] += b * m.y;
+      xyz[2] += b * m.z;
+    }
+    t[size_t(i)] = clamp_zero(xyz_to_linear_srgb(
+        Vec3f(float(xyz[0] / y_integral), float(xyz[1] / y_integral), float(xyz[2] / y_integral))));
+  }
   return t;
 }
 
