@@ -45,13 +45,25 @@ void check_magic(const std::string& path) {
     throw Error(path, "", "is not a NanoVDB file (it does not start with NanoVDB's magic number)");
 }
 
+// NanoVDB's messages span several lines (a diagnosis, then a tab-indented recommendation): one line for Kiln's.
+std::string one_line(const std::string& message) {
+  std::string out;
+  for (const char c : message) {
+    const bool space = c == '\n' || c == '\t' || c == ' ';
+    if (space && (out.empty() || out.back() == ' ')) continue;
+    out.push_back(space ? ' ' : c);
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
 // The float grid `name` of the file; an empty handle when the file has no grid of that name.
 nanovdb::GridHandle<nanovdb::HostBuffer> read_float_grid(const std::string& path, const std::string& name) {
   nanovdb::GridHandle<nanovdb::HostBuffer> handle;
   try {
     handle = nanovdb::io::readGrid<nanovdb::HostBuffer>(path, name);
   } catch (const std::exception& e) {
-    throw Error(path, "", std::string("NanoVDB cannot read it: ") + e.what());
+    throw Error(path, "", "NanoVDB cannot read it: " + one_line(e.what()));
   }
   if (!handle) return handle;
   const nanovdb::FloatGrid* grid = handle.grid<float>();

@@ -193,6 +193,25 @@ TEST(VolPath, BeerLambertThroughNestedOverlappingAndSurroundingMedia) {
                        "camera in a medium");
 }
 
+// An emitting, absorbing sphere (radius 1) seen through its centre against black: sigma_a Le along the ray,
+// attenuated on its way out, integrates to Le (1 - e^(-2 sigma_a)).
+TEST(VolPath, EmittingMediumGlowsByItsClosedForm) {
+  const MediaScene s = load(
+      "LookAt 0 -6 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" 1\n"
+      "Film \"rgb\" \"integer xresolution\" 4 \"integer yresolution\" 4\nWorldBegin\n"
+      "MakeNamedMedium \"glow\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0.2 0.5 1] \"rgb sigma_s\" [0 0 0] "
+      "\"rgb Le\" [1 2 3] \"float Lescale\" 2\n"
+      "MediumInterface \"glow\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n");
+  const double sigma[3] = {0.2, 0.5, 1.0}, le[3] = {2, 4, 6};
+  double expected[3];
+  for (int k = 0; k < 3; ++k) expected[k] = le[k] * (1.0 - std::exp(-2.0 * sigma[k]));
+  for (const char* strategy : {"mis", "brdf", "mis+hero"})
+    expect_rgb(estimate(s, settings(s, strategy, 5), 8000), expected, strategy, 1e-3);
+  // pbrt-v4 counts medium emission only below maxdepth (it ends a path one scattering event deeper): none at 0.
+  const RgbEstimate none = estimate(s, settings(s, "mis", 0), 1000);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(none.mean[k], 0.0);
+}
+
 // ---- a light inside a medium ----
 
 TEST(VolPath, PointLightInsideAnAbsorbingSphereLightsTheFloorBeyond) {
