@@ -116,6 +116,36 @@ TEST(NanoVdbMedium, MajorantGridBoundsTheDensity) {
   EXPECT_GT(checked, 5000);
 }
 
+// A step from 0 to 5 exactly where NanoVDB's 8^3 leaves meet (x = 8): points just below the step interpolate the
+// upper leaf's values, so its maximum must reach the majorant cells on both sides of the boundary.
+TEST(NanoVdbMedium, MajorantsReachAcrossLeafBoundaries) {
+  NanoVdbLattice l;
+  l.nx = l.ny = l.nz = 16;
+  for (int z = 0; z < 16; ++z)
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) l.values.push_back(x >= 8 ? 5.0f : 0.0f);
+  const std::string path = tmp("step.nvdb");
+  write_nanovdb(path, {l});
+  const NanoVdbMedium vdb(params(path), Transform());
+  Rng rng(6, 2);
+  int checked = 0;
+  for (int i = 0; i < 500; ++i) {
+    // Rays along +x and -x through the grid, at random heights.
+    const Vec3f o(i % 2 ? -1.0f : 17.0f, 0.5f + 14.0f * rng.next_float(), 0.5f + 14.0f * rng.next_float());
+    const Ray ray{o, Vec3f(i % 2 ? 1.0f : -1.0f, 0.0f, 0.0f)};
+    auto segs = vdb.majorants(ray, 100.0f);
+    MajorantSegment s;
+    while (segs.next(s))
+      for (int k = 0; k < 16; ++k) {
+        const float t = s.t0 + (s.t1 - s.t0) * (float(k) + 0.5f) / 16.0f;
+        const MediumProperties mp = vdb.at(ray.at(t));
+        ASSERT_LE(mp.sigma_s.r, s.sigma_maj.r * (1.0f + 1e-5f)) << "at x " << ray.at(t).x;
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 10000);
+}
+
 TEST(NanoVdbMedium, ReadsTemperatureBesideDensity) {
   const Blob b;
   NanoVdbLattice t = b.lattice();
