@@ -36,18 +36,13 @@ MediumProperties GridMedium::at(Vec3f p) const {
 }
 
 GridMedium::Majorants GridMedium::majorants(const Ray& ray, float tmax) const {
-  Vec3f o, d;
-  float t0, t1;
-  if (!box_.clip(ray, tmax, o, d, t0, t1)) return {};
-  return DdaMajorantIterator(majorant_, o, d, t0, t1, sigma_a_ + sigma_s_);
+  return box_.majorants(majorant_, ray, tmax, sigma_a_ + sigma_s_);
 }
 
 std::string GridMedium::describe() const {
   std::string d = "uniformgrid " + std::to_string(density_.size(0)) + "x" + std::to_string(density_.size(1)) + "x" +
                   std::to_string(density_.size(2)) + " sigma_a " + describe_rgb(sigma_a_) + " sigma_s " +
-                  describe_rgb(sigma_s_) + " g " + describe_float(phase_.g) + ", majorant grid " +
-                  std::to_string(majorant_.res(0)) + "x" + std::to_string(majorant_.res(1)) + "x" +
-                  std::to_string(majorant_.res(2));
+                  describe_rgb(sigma_s_) + " g " + describe_float(phase_.g) + ", majorant grid " + majorant_.describe();
   if (!emission_.temperature.empty()) d += ", temperature emission";
   else if (emission_.any()) d += ", Le " + describe_rgb(emission_.le);
   return d;

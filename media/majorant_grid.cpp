@@ -31,7 +31,18 @@ bool MediumBox::clip(const Ray& ray, float tmax, Vec3f& o_unit, Vec3f& d_unit, f
   return t0 < t1;
 }
 
+DdaMajorantIterator MediumBox::majorants(const MajorantGrid& grid, const Ray& ray, float tmax, Rgb sigma_t) const {
+  Vec3f o, d;
+  float t0, t1;
+  if (!clip(ray, tmax, o, d, t0, t1)) return {};
+  return DdaMajorantIterator(grid, o, d, t0, t1, sigma_t);
+}
+
 MajorantGrid::MajorantGrid(int rx, int ry, int rz) : v_(size_t(rx) * size_t(ry) * size_t(rz), 0.0f), res_{rx, ry, rz} {}
+
+std::string MajorantGrid::describe() const {
+  return std::to_string(res_[0]) + "x" + std::to_string(res_[1]) + "x" + std::to_string(res_[2]);
+}
 
 Bounds3f MajorantGrid::voxel_region(int x, int y, int z) const {
   const Vec3f lo(float(x) / float(res_[0]), float(y) / float(res_[1]), float(z) / float(res_[2]));

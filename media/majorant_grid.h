@@ -3,6 +3,7 @@
 // one keeps a coarse grid of maximum densities over its box (pbrt-v4's MajorantGrid), walked voxel by voxel with a
 // 3-D DDA, so a dense but sparse cloud is tracked against the local maximum rather than the global one.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "core/bounds.h"
@@ -34,23 +35,6 @@ class SingleMajorant {
   bool done_ = false;
 };
 
-// A heterogeneous medium's box in its own space and the map from world space to the box's unit cube, where its
-// grids and its majorant grid live.
-class MediumBox {
- public:
-  MediumBox() = default;
-  MediumBox(const Transform& medium_to_world, const Bounds3f& bounds);
-  Vec3f unit_point(Vec3f p_world) const { return world_to_unit_.point(p_world); }
-  // The part [t0, t1) of ray (o + t d, t in [0, tmax)) inside the box; false when it misses. o_unit and d_unit
-  // describe the ray in unit-cube coordinates with the same parameter t.
-  bool clip(const Ray& ray, float tmax, Vec3f& o_unit, Vec3f& d_unit, float& t0, float& t1) const;
-  const Bounds3f& bounds() const { return bounds_; }
-
- private:
-  Bounds3f bounds_;
-  Transform world_to_unit_;
-};
-
 class MajorantGrid {
  public:
   MajorantGrid() = default;
@@ -66,6 +50,7 @@ class MajorantGrid {
   float at(int x, int y, int z) const { return v_[index(x, y, z)]; }
   int res(int axis) const { return res_[axis]; }
   size_t voxels() const { return v_.size(); }
+  std::string describe() const;  // "16x16x8"
   Bounds3f voxel_region(int x, int y, int z) const;
 
  private:
@@ -89,6 +74,25 @@ class DdaMajorantIterator {
   float t_ = 0.0f, t_end_ = 0.0f;
   float next_crossing_[3] = {}, delta_[3] = {};
   int step_[3] = {}, voxel_[3] = {}, limit_[3] = {};
+};
+
+// A heterogeneous medium's box in its own space and the map from world space to the box's unit cube, where its
+// grids and its majorant grid live.
+class MediumBox {
+ public:
+  MediumBox() = default;
+  MediumBox(const Transform& medium_to_world, const Bounds3f& bounds);
+  Vec3f unit_point(Vec3f p_world) const { return world_to_unit_.point(p_world); }
+  // The part [t0, t1) of ray (o + t d, t in [0, tmax)) inside the box; false when it misses. o_unit and d_unit
+  // describe the ray in unit-cube coordinates with the same parameter t.
+  bool clip(const Ray& ray, float tmax, Vec3f& o_unit, Vec3f& d_unit, float& t0, float& t1) const;
+  // The majorant segments of the ray's part inside the box (none when it misses): grid's voxels times sigma_t.
+  DdaMajorantIterator majorants(const MajorantGrid& grid, const Ray& ray, float tmax, Rgb sigma_t) const;
+  const Bounds3f& bounds() const { return bounds_; }
+
+ private:
+  Bounds3f bounds_;
+  Transform world_to_unit_;
 };
 
 // Majorant grid resolution of the lattice media (uniformgrid, rgbgrid), as pbrt-v4's.

@@ -199,10 +199,7 @@ MediumProperties NanoVdbMedium::at(Vec3f p) const {
 }
 
 NanoVdbMedium::Majorants NanoVdbMedium::majorants(const Ray& ray, float tmax) const {
-  Vec3f o, d;
-  float t0, t1;
-  if (!box_.clip(ray, tmax, o, d, t0, t1)) return {};
-  return DdaMajorantIterator(majorant_, o, d, t0, t1, sigma_a_ + sigma_s_);
+  return box_.majorants(majorant_, ray, tmax, sigma_a_ + sigma_s_);
 }
 
 uint64_t NanoVdbMedium::active_voxels() const { return grids_->density->activeVoxelCount(); }
@@ -214,8 +211,7 @@ size_t NanoVdbMedium::grid_bytes() const {
 std::string NanoVdbMedium::describe() const {
   std::string d = "nanovdb " + std::to_string(active_voxels()) + " active voxels, sigma_a " + describe_rgb(sigma_a_) +
                   " sigma_s " + describe_rgb(sigma_s_) + " g " + describe_float(phase_.g) + ", majorant grid " +
-                  std::to_string(majorant_.res(0)) + "x" + std::to_string(majorant_.res(1)) + "x" +
-                  std::to_string(majorant_.res(2));
+                  majorant_.describe();
   if (emissive()) d += ", temperature emission";
   return d;
 }

@@ -41,10 +41,7 @@ MediumProperties RgbGridMedium::at(Vec3f p) const {
 }
 
 RgbGridMedium::Majorants RgbGridMedium::majorants(const Ray& ray, float tmax) const {
-  Vec3f o, d;
-  float t0, t1;
-  if (!box_.clip(ray, tmax, o, d, t0, t1)) return {};
-  return DdaMajorantIterator(majorant_, o, d, t0, t1, Rgb(1.0f));
+  return box_.majorants(majorant_, ray, tmax, Rgb(1.0f));
 }
 
 std::string RgbGridMedium::describe() const {

@@ -13,7 +13,9 @@
 //     Lambert BRDF; named materials; constant textures (others warned);
 //   * lights: AreaLightSource "diffuse" (L x scale, twosided) on meshes and spheres, LightSource point, spot,
 //     distant (from / to, pbrt's smoothstep spot falloff, "power" / "illuminance" as pbrt normalises them) and
-//     infinite with a constant L (SceneDesc::infinite_lights).
+//     infinite with a constant L (SceneDesc::infinite_lights);
+//   * media: MakeNamedMedium into SceneDesc::media (scenes/pbrt/media.cpp), MediumInterface on shapes and the
+//     camera (names resolved when the file ends, so a medium may be named before it is defined).
 // Anything else the file asks for is a warning naming file, line and directive (SceneDesc::warnings) and, when it
 // changes the picture, a SceneDesc::unsupported entry. Malformed input throws kiln::Error naming the file and line.
 // SceneDesc::rules stays SceneRules::Kiln.

@@ -20,7 +20,6 @@
 #include <cmath>
 
 #include "renderer/analysis/image_compare.h"
-#include "renderer/film/pixel_filter.h"
 #include "renderer/image_io/image_io.h"
 #include "renderer/render_util.h"
 #include "support/shared_data.h"
@@ -94,18 +93,11 @@ TEST(PbrtReference, MediaSceneMatchesPbrtV4) {
   const SceneDesc scene = load_scene(dir + "media.pbrt");
   const auto world = build_scene_world(scene);
   ASSERT_EQ(world->media.size(), 2u);
-  const CameraDesc& cd = scene.cameras.at(0);
-  const Camera cam(cd);
-  Film film(cam.width(), cam.height());
-  RenderOptions ro;
-  ro.seed = 1;
-  ro.spp_total = kSpp;
-  ro.filter = pixel_filter_for(cd, std::nullopt);
-  const IntegratorSettings settings = scene_settings(cd, scene, world->features);
+  const IntegratorSettings settings = scene_settings(scene.cameras.at(0), scene, world->features);
   ASSERT_TRUE(std::holds_alternative<VolPathSettings>(settings.method)) << settings.describe();
-  const RenderStats rs = render_samples(*world, cam, settings, ro, 0, kSpp, film);
+  RenderStats rs;
+  const Image image = render_like_kiln(scene, *world, kSpp, 1, &rs);
   EXPECT_EQ(rs.rays.nan_samples, 0u);
-  const Image image = film.mean();
   const Image reference = read_exr(dir + "reference/media.exr").rgb;
   ASSERT_EQ(image.width(), kWhole.x1 * kBlock);
   ASSERT_EQ(image.height(), kWhole.y1 * kBlock);

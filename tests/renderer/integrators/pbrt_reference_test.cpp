@@ -31,18 +31,12 @@ TEST(PbrtReference, KillerooSimpleMatchesPbrtV4) {
   KILN_NEED_SHARED_PATH(killeroos("killeroo-simple.pbrt"));
   const SceneDesc scene = load_scene(killeroos("killeroo-simple.pbrt"));
   const auto world = build_scene_world(scene);
-  const CameraDesc& cd = scene.cameras.at(0);
-  const Camera cam(cd);
-  Film film(cam.width(), cam.height());
-  RenderOptions ro;
-  ro.seed = 3;
-  ro.spp_total = kSpp;
-  ro.filter = pixel_filter_for(cd, std::nullopt);
-  ASSERT_EQ(ro.filter.kind, PixelFilterKind::Gaussian) << "pbrt's default PixelFilter";
-  render_samples(*world, cam, scene_settings(cd, scene, world->features), ro, 0, kSpp, film);
+  ASSERT_EQ(pixel_filter_for(scene.cameras.at(0), std::nullopt).kind, PixelFilterKind::Gaussian)
+      << "pbrt's default PixelFilter";
+  const Image image = render_like_kiln(scene, *world, kSpp, 3);
 
   const Image reference = read_exr(killeroos("reference/killeroo-simple.exr")).rgb;
-  const BlockStats st = block_luminance_stats(film.mean(), reference, kBlock);
+  const BlockStats st = block_luminance_stats(image, reference, kBlock);
   std::cout << "killeroo-simple vs pbrt-v4, " << kSpp << " spp, " << kBlock << "-px blocks: median " << st.median_rel
             << ", p95 " << st.p95_rel << ", mean ratio " << st.mean_ratio << " over " << st.blocks << " blocks\n";
   EXPECT_EQ(st.left_out.image, 0u) << "pixels that are not finite";
