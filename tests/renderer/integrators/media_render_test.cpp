@@ -89,6 +89,11 @@ void expect_rgb(const RgbEstimate& e, const double expected[3], const std::strin
         << what << ", channel " << k << " (stderr " << e.stderr_[k] << ")";
 }
 
+// Exactly no light in any channel.
+void expect_dark(const RgbEstimate& e, const std::string& what) {
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(e.mean[k], 0.0) << what << ", channel " << k;
+}
+
 // Two estimates of the same expectation: every channel within 4 combined standard errors, nothing non-finite.
 void expect_agree(const RgbEstimate& a, const RgbEstimate& b, const std::string& what) {
   EXPECT_EQ(a.nonfinite + b.nonfinite, 0u) << what;
@@ -217,8 +222,7 @@ TEST(VolPath, EmittingMediumGlowsByItsClosedForm) {
   for (const char* strategy : {"mis", "brdf", "mis+hero"})
     expect_rgb(estimate(s, settings(s, strategy, 5), 8000), expected, strategy, 1e-3);
   // pbrt-v4 counts medium emission only below maxdepth (it ends a path one scattering event deeper): none at 0.
-  const RgbEstimate none = estimate(s, settings(s, "mis", 0), 1000);
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(none.mean[k], 0.0);
+  expect_dark(estimate(s, settings(s, "mis", 0), 1000), "maxdepth 0");
 }
 
 // ---- a light inside a medium ----
@@ -290,8 +294,7 @@ TEST(VolPath, SingleScatteringInAThinSlabMatchesItsClosedForm) {
   for (const char* strategy : {"mis", "nee", "mis+hero"})
     expect_rgb(estimate(s, settings(s, strategy, 1), 40000), expected, strategy, 3e-3);
   // maxdepth 0: no scattering event may light the path.
-  const RgbEstimate none = estimate(s, settings(s, "mis", 0), 2000);
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(none.mean[k], 0.0);
+  expect_dark(estimate(s, settings(s, "mis", 0), 2000), "maxdepth 0");
 }
 
 // ---- the stiff case ----
