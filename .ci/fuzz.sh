@@ -20,6 +20,9 @@
 # Reproduce a finding:  build/fuzz/kiln_fuzz_<loader> build/fuzz/artifacts/<loader>/crash-...
 # Minimise it:          build/fuzz/kiln_fuzz_<loader> -minimize_crash=1 -runs=20000 <crash file>
 # then keep the minimised input as tests/fuzz/regressions/<loader>/<short-name> (replayed by the unit tests).
+# Save generated inputs (every loader needs some in tests/fuzz/regressions/<loader>/, or the replay test fails):
+#   mkdir -p /tmp/min && build/fuzz/kiln_fuzz_<loader> -merge=1 -max_len=4096 /tmp/min build/fuzz/corpus/<loader>
+# distils the run's corpus to the inputs that each add coverage; copy a few dozen small ones, named gen_<hash>.
 # Needs clang and libclang-rt-14-dev (bash .ci/install-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."

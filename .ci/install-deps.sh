@@ -8,6 +8,8 @@ pkgs=(build-essential cmake libembree-dev libtbb-dev libopenimageio-dev openimag
 pkgs+=(libnanovdb-dev)
 # libFuzzer (the Fuzz.LoadersRunClean test, .ci/fuzz.sh) needs clang and its runtime.
 pkgs+=(clang libclang-rt-14-dev)
+# The folder-cycle check (Layout.NoFolderCycles, tools/folder_cycles.py) and tools/ scripts.
+pkgs+=(python3)
 # The Slurm job-array test (Slurm.JobArrayRendersOneFrame, tests/slurm/) starts its own cluster.
 pkgs+=(slurm-wlm munge)
 missing=()

@@ -17,10 +17,10 @@ cd "$(dirname "$0")/.."
 
 BUILD=build/tsan
 JOBS=${TSAN_JOBS:-$(nproc)}
-# Scheduler determinism, progressive waves and cancellation, CLI production paths (subprocesses), a parallel render
-# into a reference film, and the BVH accelerator's parallel build + render. Excluded: the course-reference renders
+# Two renders of one world at once, scheduler determinism, progressive waves and cancellation, CLI production paths
+# (subprocesses), a parallel render into a reference film, and the BVH accelerator's parallel build + render. Excluded: the course-reference renders
 # and scene sweeps (minutes under TSan, no concurrency the ones here do not have).
-TSAN_FILTER=${TSAN_FILTER:-"Determinism.*:Progressive.*:Production.*:Convergence.MisBeatsUniformOnTheCornellBox:Cli.EmbreeAndBvhRendersAgree:Accels/FarOrigin.*:Scales/Scale.*"}
+TSAN_FILTER=${TSAN_FILTER:-"ConcurrentRenders.*:Determinism.*:Progressive.*:Production.*:Convergence.MisBeatsUniformOnTheCornellBox:Cli.EmbreeAndBvhRendersAgree:Accels/FarOrigin.*:Scales/Scale.*"}
 
 if [ "$(nproc)" -lt 2 ]; then
   echo "tsan.sh: needs 2+ CPUs (TBB runs one thread per CPU; races need two threads to show)" >&2

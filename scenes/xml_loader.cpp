@@ -234,6 +234,12 @@ class XmlLoader {
     const fs::path p(rel);
     return (p.is_absolute() ? p : dir_ / p).lexically_normal().string();
   }
+  // A file the render reads besides the ones read here (a texture image, an environment map) joins the scene's
+  // identity (SceneDesc::external_files). Returns the path.
+  std::string uses_file(const std::string& path) {
+    scene_.external_files.push_back(path);
+    return path;
+  }
 
   // ---- top-level scalars ---------------------------------------------------------------------------------------
   void read_globals() {
@@ -256,7 +262,7 @@ class XmlLoader {
       // both itself.
       TextureDesc t;
       t.name = location(n);
-      t.image_path = resolve(get_string(n));
+      t.image_path = uses_file(resolve(get_string(n)));
       t.decal = DecalMode::ReplaceBackground;
       t.filter = TextureFilter::Nearest;
       t.normalizer = 1.0f;
@@ -510,7 +516,7 @@ class XmlLoader {
     t.source = image == "perlin"         ? TextureSource::Perlin
                : image == "checkerboard" ? TextureSource::Checkerboard
                                          : TextureSource::Image;
-    if (t.source == TextureSource::Image) t.image_path = resolve(image);
+    if (t.source == TextureSource::Image) t.image_path = uses_file(resolve(image));
     read_common_texture_children(c, t);
     if (Node v = opt_child(c, "Appearance")) {
       const std::string a = get_string(v);
@@ -540,7 +546,7 @@ class XmlLoader {
       const int id = get_int(img);
       const auto it = image_paths_.find(id);
       if (it == image_paths_.end()) fail(img, "Image " + std::to_string(id) + " is not defined");
-      t.image_path = it->second;
+      t.image_path = uses_file(it->second);
     } else if (*type == "perlin") {
       t.source = TextureSource::Perlin;
     } else if (*type == "checkerboard") {
@@ -781,6 +787,7 @@ class XmlLoader {
       // Checked here, where the element is known; the renderer reads (and names) it when it builds the light.
       std::error_code ec;
       if (!fs::is_regular_file(e.image_path, ec)) fail(named, "environment map '" + e.image_path + "' does not exist");
+      uses_file(e.image_path);
       e.element = location(l);
       scene_.env_lights.push_back(e);
     }

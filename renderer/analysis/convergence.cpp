@@ -8,7 +8,7 @@
 #include <map>
 
 #include "core/error.h"
-#include "renderer/render/progressive.h"
+#include "renderer/analysis/error_curve.h"
 
 namespace kiln {
 namespace {
@@ -40,7 +40,7 @@ PathSettings convergence_base_settings(const SceneDesc& scene) {
   PathSettings s = kiln_path_defaults(scene);
   s.max_depth = std::max(0, s.max_depth);
   s.russian_roulette = false;
-  s.rr_min_depth = kStrategyRrMinDepth;
+  s.rr_min_depth = kKilnRouletteMinDepth;
   return s;
 }
 
@@ -74,18 +74,18 @@ std::vector<ConvergencePoint> measure_strategy(const World& world, const Camera&
     ro.seed = options.seed + 1 + uint64_t(r);
     ro.cancel = options.cancel;
     ProgressiveOptions po;
-    po.reference = &reference;
     if (r == 0) po.time_limit_seconds = options.budget_seconds / runs;
     Film film(camera.width(), camera.height());
-    const ProgressiveResult res = render_progressive(world, camera, strategy.settings, ro, spp_target, po, film);
-    for (const WaveReport& w : res.waves) {
-      if (w.cancelled || !w.error) continue;
-      auto& m = by_spp[w.spp];
-      m[0].add(w.seconds);
-      m[1].add(w.error->rel_mse);
-      m[2].add(w.error->rmse);
+    const ErrorCurve curve =
+        render_error_curve(world, camera, strategy.settings, ro, spp_target, reference, po, film);
+    for (const MeasuredWave& w : curve.waves) {
+      if (w.wave.cancelled) continue;
+      auto& m = by_spp[w.wave.spp];
+      m[0].add(w.wave.seconds);
+      m[1].add(w.error.rel_mse);
+      m[2].add(w.error.rmse);
     }
-    if (r == 0) spp_target = std::max(1u, res.spp);
+    if (r == 0) spp_target = std::max(1u, curve.render.spp);
   }
   std::vector<ConvergencePoint> out;
   for (const auto& [spp, m] : by_spp) {

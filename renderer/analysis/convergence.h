@@ -7,7 +7,7 @@
 // Strategy names (all Kiln path tracing with one set of transport rules, so every strategy converges to the same
 // image): uniform, cosine, brdf (direction sampling only), nee (BRDF sampling + next event estimation), mis (NEE
 // and BRDF sampling combined with the power heuristic); any of them with "+rr" adds Kiln's Russian roulette
-// after kStrategyRrMinDepth bounces.
+// after kKilnRouletteMinDepth bounces (renderer/integrators/settings.h).
 #pragma once
 #include <atomic>
 #include <cstdint>
@@ -22,7 +22,6 @@
 
 namespace kiln {
 
-inline constexpr int kStrategyRrMinDepth = 3;
 // Waves below this many samples per pixel are dominated by start-up costs, not by the estimator's variance, and
 // are left out of the fitted error-against-time slope.
 inline constexpr uint32_t kSlopeMinSpp = 4;

@@ -15,11 +15,13 @@ struct ConvergeArgs {
   std::optional<std::string> camera;     // camera id; the scene's first camera when absent
   std::optional<std::string> reference;  // EXR of the same (scaled) resolution; rendered with mis when absent
   std::string strategies = "uniform,cosine,brdf,nee,nee+rr,mis,mis+rr";
-  double budget_seconds = 60;            // total render time across all strategies (the reference not included)
+  // The study's whole render time, the reference included when it is rendered here (renderer/analysis/convergence_budget.h).
+  double budget_seconds = 60;
   int runs = 3;                          // independent runs per strategy (different seeds) for the spread
   std::string out_dir = "converge";
   double resolution_scale = 1.0;         // e.g. 0.25 renders 512x512 cameras at 128x128
-  uint32_t reference_spp = 4096;
+  // Exactly this many spp for the rendered reference; absent: as many as fit its share of the budget (at most 4096).
+  std::optional<uint32_t> reference_spp;
   uint32_t max_spp = 1u << 16;
   uint64_t seed = 0;
   int threads = 0;                       // 0: all cores

@@ -1,9 +1,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,18 +9,18 @@
 
 #include "core/error.h"
 #include "renderer/cli/converge.h"
+#include "renderer/cli/interrupt.h"
 #include "renderer/analysis/convergence.h"
+#include "renderer/analysis/convergence_budget.h"
 #include "renderer/image_io/image_io.h"
 #include "renderer/integrators/rules.h"
+#include "renderer/render/progressive.h"
 #include "renderer/render/render.h"
 #include "renderer/world/world.h"
 #include "scenes/loader.h"
 
 namespace kiln {
 namespace {
-
-std::atomic<bool> g_converge_interrupted{false};
-extern "C" void on_converge_signal(int) { g_converge_interrupted.store(true); }
 
 // The reference must not share random streams with any measured run (seed + 1 + r), or its errors would be
 // correlated with theirs and relMSE would read low.
@@ -39,20 +37,106 @@ void write_text(const std::string& path, const std::string& text) {
   if (ec) throw Error(path, "", "cannot move the finished file into place: " + ec.message());
 }
 
-// SIGINT / SIGTERM set the cancel flag while a study runs; the defaults come back however it ends.
-struct SignalGuard {
-  SignalGuard() {
-    g_converge_interrupted.store(false);
-    std::signal(SIGINT, on_converge_signal);
-    std::signal(SIGTERM, on_converge_signal);
-  }
-  ~SignalGuard() {
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
+struct RenderedReference {
+  Image image;
+  uint32_t spp = 0;
+  double seconds = 0.0, seconds_per_spp = 0.0;
+  bool cancelled = false;
 };
+
+// The pilot's doubling waves (renderer/render/progressive.h): its spp, time, and the last wave's cost per sample.
+struct Pilot {
+  uint32_t spp = 0;
+  double seconds = 0.0, seconds_per_spp = 0.0;
+  bool cancelled = false;
+};
+
+Pilot run_pilot(const World& world, const Camera& camera, const NamedStrategy& strategy, const RenderOptions& ro,
+                uint32_t max_spp, double time_limit, Film& film) {
+  ProgressiveOptions po;
+  po.time_limit_seconds = time_limit;
+  const ProgressiveResult pr = render_progressive(world, camera, strategy.settings, ro, max_spp, po, film);
+  Pilot p;
+  p.spp = pr.spp;
+  p.seconds = pr.stats.seconds;
+  p.cancelled = pr.stats.cancelled;
+  if (!pr.waves.empty()) {
+    const WaveReport& last = pr.waves.back();
+    const WaveRange range = wave_range(last.wave, max_spp);
+    p.seconds_per_spp = last.wave_seconds / double(std::max(1u, range.last - range.first));
+  }
+  return p;
+}
+
+// The reference when none is given (renderer/analysis/convergence_budget.h): a pilot measures the cost per sample,
+// the plan is announced, and the same film continues to the planned spp. Written to `path`.
+RenderedReference render_reference(const World& world, const Camera& camera, const std::string& camera_id,
+                                   const NamedStrategy& strategy, const ConvergeArgs& args, const std::string& path,
+                                   const std::atomic<bool>& cancel) {
+  const double share = kReferenceShare * args.budget_seconds;
+  const uint32_t requested = args.reference_spp.value_or(0);
+  const uint32_t max_spp = requested > 0 ? requested : kDefaultReferenceMaxSpp;
+  RenderOptions ro;
+  ro.seed = args.seed ^ kReferenceSeedTweak;
+  ro.spp_total = kProgressiveSppTotal;  // as the pilot's waves render them, so the continuation matches
+  ro.cancel = &cancel;
+  Film film(camera.width(), camera.height());
+  const Pilot pilot = run_pilot(world, camera, strategy, ro, max_spp, kPilotShare * share, film);
+  const ReferencePlan plan = plan_reference(share, pilot.spp, pilot.seconds, pilot.seconds_per_spp, max_spp, requested);
+  if (!args.quiet) {
+    const std::string why = requested > 0 ? "as --reference-spp asks"
+                                          : "at most " + std::to_string(kDefaultReferenceMaxSpp) + " spp within " +
+                                                std::to_string(int(std::lround(100 * kReferenceShare))) +
+                                                "% of the --budget";
+    std::fprintf(stderr,
+                 "kiln: converge: no --reference given; rendering one with mis at %u spp (%dx%d) to %s: about %.1fs "
+                 "(%.3gs per spp, measured on %u spp), %s\n",
+                 plan.spp, camera.width(), camera.height(), path.c_str(), plan.estimated_seconds, pilot.seconds_per_spp,
+                 pilot.spp, why.c_str());
+    if (!plan.fits)
+      std::fprintf(stderr,
+                   "kiln: converge: warning: the reference alone will take about %.0fs, more than %.0f%% of the %.0fs "
+                   "budget; the study will take about %.0fs in all (leave --reference-spp out to fit the budget)\n",
+                   plan.estimated_seconds, 100 * kReferenceShare, args.budget_seconds,
+                   plan.estimated_seconds + strategies_budget(args.budget_seconds, plan.estimated_seconds));
+  }
+  RenderedReference r;
+  r.spp = plan.spp;
+  r.seconds = pilot.seconds;
+  r.seconds_per_spp = pilot.seconds_per_spp;
+  r.cancelled = pilot.cancelled;
+  if (!r.cancelled && plan.spp > pilot.spp) {
+    ro.progress = !args.quiet;
+    const RenderStats rs = render_samples(world, camera, strategy.settings, ro, pilot.spp, plan.spp, film);
+    r.seconds += rs.seconds;
+    r.cancelled = rs.cancelled;
+  }
+  r.image = film.mean();
+  write_exr(path, r.image, {},
+            {{"kiln:version", KILN_VERSION},
+             {"kiln:scene", args.scene},
+             {"kiln:camera", camera_id},
+             {"kiln:spp", std::to_string(plan.spp)},
+             {"kiln:integrator", strategy.settings.describe()},
+             {"kiln:render_seconds", std::to_string(r.seconds)},
+             {"kiln:incomplete", r.cancelled ? "true" : "false"}});
+  if (!args.quiet && !r.cancelled) std::fprintf(stderr, "kiln: converge: reference took %.1fs\n", r.seconds);
+  return r;
+}
+
+// Every run renders at least 1 spp, whatever its part of the budget: when that minimum (at about the reference's cost
+// per spp) exceeds the strategies' part, the study will overrun, and the user hears so before it starts.
+void warn_if_one_spp_overruns(const ConvergeArgs& args, size_t strategies, double seconds_per_spp,
+                              double reference_seconds) {
+  const double minimum = double(strategies) * double(args.runs) * seconds_per_spp;
+  const double part = strategies_budget(args.budget_seconds, reference_seconds);
+  if (args.quiet || minimum <= part) return;
+  std::fprintf(stderr,
+               "kiln: converge: warning: %zu strategies x %d run(s) need at least 1 spp each, about %.0fs at %.3gs per "
+               "spp, more than the %.0fs left of the budget: the study will take about %.0fs (lower --runs, "
+               "--strategies or --resolution-scale, or raise --budget)\n",
+               strategies, args.runs, minimum, seconds_per_spp, part, reference_seconds + minimum);
+}
 
 size_t delta_light_count(const SceneDesc& s) {
   return s.point_lights.size() + s.spot_lights.size() + s.directional_lights.size() + s.area_lights.size();
@@ -116,12 +200,13 @@ int cmd_converge(const ConvergeArgs& args) {
   std::vector<NamedStrategy> strategies;
   for (const std::string& n : names) strategies.push_back(strategy(n));
 
-  const SignalGuard signals;
+  const InterruptGuard interrupt;
   std::filesystem::create_directories(args.out_dir);
   const std::filesystem::path dir(args.out_dir);
 
   Image reference;
   std::string reference_note;
+  double reference_seconds = 0.0;
   if (args.reference) {
     reference = read_exr(*args.reference).rgb;
     if (reference.width() != camera.width() || reference.height() != camera.height())
@@ -131,45 +216,29 @@ int cmd_converge(const ConvergeArgs& args) {
                       std::to_string(camera.height()) + " (check --resolution-scale)");
     reference_note = "reference " + std::filesystem::path(*args.reference).filename().string();
   } else {
-    const NamedStrategy ref_strategy = strategy("mis");
-    const std::string path = (dir / "reference.exr").string();
-    if (!args.quiet)
-      std::fprintf(stderr, "kiln: converge: no --reference given; rendering one with mis at %u spp (%dx%d) to %s\n",
-                   args.reference_spp, camera.width(), camera.height(), path.c_str());
-    RenderOptions ro;
-    ro.seed = args.seed ^ kReferenceSeedTweak;
-    ro.spp_total = args.reference_spp;
-    ro.progress = !args.quiet;
-    ro.cancel = &g_converge_interrupted;
-    Film film(camera.width(), camera.height());
-    const RenderStats rs = render_samples(*world, camera, ref_strategy.settings, ro, 0, args.reference_spp, film);
-    reference = film.mean();
-    write_exr(path, reference, {},
-              {{"kiln:version", KILN_VERSION},
-               {"kiln:scene", args.scene},
-               {"kiln:camera", cd.id},
-               {"kiln:spp", std::to_string(args.reference_spp)},
-               {"kiln:integrator", ref_strategy.settings.describe()},
-               {"kiln:render_seconds", std::to_string(rs.seconds)},
-               {"kiln:incomplete", rs.cancelled ? "true" : "false"}});
-    if (rs.cancelled) {
+    const RenderedReference r =
+        render_reference(*world, camera, cd.id, strategy("mis"), args,
+                         (dir / "reference.exr").string(), interrupt.flag());
+    if (r.cancelled) {
       std::fprintf(stderr, "kiln: converge: interrupted while rendering the reference\n");
       return 130;
     }
-    if (!args.quiet) std::fprintf(stderr, "kiln: converge: reference took %.1fs\n", rs.seconds);
-    reference_note = "reference mis " + std::to_string(args.reference_spp) + " spp";
+    reference = r.image;
+    reference_seconds = r.seconds;
+    reference_note = "reference mis " + std::to_string(r.spp) + " spp";
+    warn_if_one_spp_overruns(args, strategies.size(), r.seconds_per_spp, r.seconds);
   }
 
   ConvergenceOptions co;
   co.max_spp = args.max_spp;
   co.runs = args.runs;
-  co.budget_seconds = args.budget_seconds / double(strategies.size());
+  co.budget_seconds = strategies_budget(args.budget_seconds, reference_seconds) / double(strategies.size());
   co.seed = args.seed;
-  co.cancel = &g_converge_interrupted;
+  co.cancel = &interrupt.flag();
   std::vector<ConvergencePoint> points;
   std::vector<StrategySummary> summaries;
   for (const NamedStrategy& st : strategies) {
-    if (g_converge_interrupted.load()) break;
+    if (interrupt.interrupted()) break;
     if (!args.quiet)
       std::fprintf(stderr, "kiln: converge: %-8s %s, %d run(s), %.1fs\n", st.name.c_str(), st.settings.describe().c_str(),
                    co.runs, co.budget_seconds);
@@ -191,7 +260,7 @@ int cmd_converge(const ConvergeArgs& args) {
   std::printf("%s\n%s\n", csv.c_str(), svg.c_str());
   std::fflush(stdout);
 
-  if (g_converge_interrupted.load()) {
+  if (interrupt.interrupted()) {
     std::fprintf(stderr, "kiln: converge: interrupted; wrote the points measured so far\n");
     return 130;
   }

@@ -3,6 +3,7 @@
 
 #include "renderer/cli/commands.h"
 #include "renderer/integrators/integrator.h"
+#include "renderer/render/scene_fingerprint.h"
 #include "renderer/world/world.h"
 #include "renderer/texture/scene_textures.h"
 #include "scenes/loader.h"
@@ -49,12 +50,20 @@ void print_media(const SceneDesc& s, const World& w) {
     if (c.medium >= 0) std::printf("  camera %s sits in medium %d\n", c.id.c_str(), c.medium);
 }
 
+// The scene's identity as `kiln merge` checks it (renderer/render/scene_fingerprint.h): every file it covers.
+void print_identity(const SceneFingerprint& f) {
+  std::printf("identity: %s (%zu files, %llu bytes)\n", f.hash.c_str(), f.files.size(), (unsigned long long)f.bytes);
+  for (const FingerprintedFile& file : f.files)
+    std::printf("  %s %12llu  %s\n", file.hash.c_str(), (unsigned long long)file.bytes, file.name.c_str());
+}
+
 }  // namespace
 
 int cmd_info(const std::string& path, int subdivide, const std::optional<std::string>& rules_override) {
   LoadOptions lo;
   lo.subdivide = subdivide;
-  const SceneDesc s = load_scene(path, lo);
+  SceneFingerprint fingerprint;
+  const SceneDesc s = load_scene_fingerprinted(path, lo, fingerprint);
   RuleOverrides overrides;
   overrides.rules = rules_override;
   const SceneRules rules = resolve_rules(s, overrides);
@@ -109,6 +118,7 @@ int cmd_info(const std::string& path, int subdivide, const std::optional<std::st
       std::printf("; %zu filtered over a footprint, computed on %zu bindings", t.filtered, t.footprint_bindings);
     std::printf("\n");
   }
+  print_identity(fingerprint);
   for (const std::string& w : world->warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
   for (const std::string& u : s.unsupported) std::printf("not rendered yet: %s\n", u.c_str());

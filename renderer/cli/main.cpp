@@ -94,11 +94,20 @@ int main(int argc, char** argv) {
   converge->add_option("--camera", ca.camera, "Camera id (default: the scene's first camera)");
   converge->add_option("--reference", ca.reference, "Reference EXR at the rendered resolution (default: render one with mis)");
   converge->add_option("--strategies", ca.strategies, "Comma-separated: uniform, cosine, brdf, nee, mis, each optionally +rr (and, in media, +hero)")->capture_default_str();
-  converge->add_option("--budget", ca.budget_seconds, "Total render seconds across all strategies (reference excluded)")->check(CLI::PositiveNumber)->capture_default_str();
+  converge->add_option("--budget", ca.budget_seconds,
+                       "The study's total render seconds. Without --reference, a reference is rendered first within "
+                       "half of it (as many spp as fit, at most 4096; its spp and estimated time are printed before "
+                       "it starts); the strategies share the rest. Render time stays within 1.25x the budget unless "
+                       "1 spp per run already costs more (then a warning gives the expected total); loading and "
+                       "building the scene come on top")
+      ->check(CLI::PositiveNumber)->capture_default_str();
   converge->add_option("--runs", ca.runs, "Independent runs per strategy (different seeds) for the spread")->check(CLI::PositiveNumber)->capture_default_str();
   converge->add_option("-o,--output", ca.out_dir, "Output folder for convergence.csv, convergence.svg, reference.exr")->capture_default_str();
   converge->add_option("--resolution-scale", ca.resolution_scale, "Scale the camera resolution (e.g. 0.25: 512x512 -> 128x128)")->check(CLI::PositiveNumber)->capture_default_str();
-  converge->add_option("--reference-spp", ca.reference_spp, "Samples per pixel of the rendered reference")->check(CLI::PositiveNumber)->capture_default_str();
+  converge->add_option("--reference-spp", ca.reference_spp,
+                       "Render the reference with exactly this many spp, even past its share of --budget (its "
+                       "estimated time is printed first, with a warning when it does not fit). Default: fit the share")
+      ->check(CLI::PositiveNumber);
   converge->add_option("--max-spp", ca.max_spp, "Cap on the samples per pixel of any run")->check(CLI::PositiveNumber)->capture_default_str();
   converge->add_option("--seed", ca.seed, "Base random seed (run r uses seed + 1 + r)")->capture_default_str();
   converge->add_option("--threads", ca.threads, "Worker threads (0: all cores)")->capture_default_str();

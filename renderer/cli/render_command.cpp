@@ -3,35 +3,32 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "renderer/integrators/aov.h"
+#include "renderer/analysis/error_curve.h"
 #include "renderer/cli/commands.h"
-#include "renderer/render/merge.h"
+#include "renderer/cli/interrupt.h"
 #include "renderer/film/pixel_filter.h"
-#include "renderer/render/progressive.h"
-#include "renderer/image_io/image_io.h"
 #include "renderer/film/tonemap.h"
-#include "renderer/world/ray_query.h"
+#include "renderer/image_io/image_io.h"
+#include "renderer/integrators/aov.h"
+#include "renderer/render/progressive.h"
 #include "renderer/render/scene_fingerprint.h"
-#include "renderer/world/world.h"
 #include "renderer/texture/scene_textures.h"
+#include "renderer/world/ray_query.h"
+#include "renderer/world/world.h"
 #include "scenes/loader.h"
 
 namespace kiln {
 namespace {
 
-std::atomic<bool> g_interrupted{false};
 // Samples per pixel of the AOV pass: enough to anti-alias edges, never more than the beauty render takes (at 1 spp
 // four AOV rays per pixel would cost ~25% of the render; capped by the total spp, not the part's, so split renders
 // agree).
-constexpr uint32_t kAovSamplesPerPixel = 4;
-extern "C" void on_signal(int) { g_interrupted.store(true); }
 
 std::string stem_of(const std::string& image_name, const std::string& fallback) {
   const std::string stem = std::filesystem::path(image_name).stem().string();
@@ -174,234 +171,292 @@ SampleCounts sample_counts(const Film& film, const Crop& c) {
   return s;
 }
 
-}  // namespace
 
-int cmd_merge(const std::vector<std::string>& parts, const std::string& output) {
-  const MergeResult r = merge_parts(parts);
-  Metadata meta = {{"kiln:version", KILN_VERSION},
-                   {"kiln:merged_parts", std::to_string(parts.size())},
-                   {"kiln:spp", std::to_string(r.max_samples)},
-                   {"kiln:incomplete", r.complete() ? "false" : "true"}};
-  meta.insert(meta.end(), r.frame.begin(), r.frame.end());
-  if (!r.complete()) meta.emplace_back("kiln:missing", missing_metadata(r.missing));
-  write_exr(output, r.image, {}, meta);
-  std::printf("%s\n", output.c_str());
-  for (const SampleGap& g : r.missing)
-    std::fprintf(stderr, "kiln: warning: %s: missing samples %llu:%llu of %llu in pixels %d,%d,%d,%d (render them with %s)\n",
-                 output.c_str(), (unsigned long long)g.first, (unsigned long long)g.last, (unsigned long long)r.spp_total,
-                 g.x0, g.x1, g.y0, g.y1, g.to_args().c_str());
-  if (!r.complete()) std::fprintf(stderr, "kiln: warning: %s is incomplete (kiln:incomplete = true)\n", output.c_str());
-  return 0;
+// The scene loaded for a render: its description, identity, rule set, world, and the cameras to render.
+struct LoadedScene {
+  SceneDesc scene;
+  SceneFingerprint fingerprint;  // identifies the scene in the metadata of split renders (renderer/render/merge.h)
+  SceneRules rules = SceneRules::Kiln;
+  std::unique_ptr<World> world;
+  std::vector<size_t> cameras;  // indices into scene.cameras
+  double parse_seconds = 0;
+};
+
+// Bad option combinations are reported before any work.
+void check_render_args(const RenderArgs& args) {
+  if (args.filter) (void)parse_pixel_filter(*args.filter);
+  if (args.adaptive && args.spp_range)
+    throw Error("--adaptive", "", "cannot be combined with --spp-range: a pixel's stopping decision needs all its "
+                                  "samples from index 0");
 }
+
+LoadedScene load_for_render(const RenderArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  LoadedScene l;
+  LoadOptions lo;
+  lo.subdivide = args.subdivide;
+  l.scene = load_scene_fingerprinted(args.scene, lo, l.fingerprint);  // its meshes are handed to the world
+  l.parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (l.scene.cameras.empty()) throw Error(args.scene, "", "scene has no camera");
+  for (size_t i = 0; i < l.scene.cameras.size(); ++i)
+    if (!args.camera || l.scene.cameras[i].id == *args.camera) l.cameras.push_back(i);
+  if (l.cameras.empty()) throw Error(args.scene, "", "no camera with id '" + *args.camera + "'");
+  l.rules = resolve_rules(l.scene, args.rules);
+  WorldOptions wo;
+  wo.accel = args.accel;
+  wo.ellipsoid_pdf = ellipsoid_pdf(l.rules, args.rules);
+  wo.env_map_sampling = env_map_sampling(l.rules, args.rules);
+  if (args.aovs) (void)parse_aovs(*args.aovs);  // a bad name fails before the world is built
+  l.world = build_world_taking_meshes(l.scene, wo);
+  return l;
+}
+
+void print_scene_warnings(const RenderArgs& args, const LoadedScene& l) {
+  const char* path = args.scene.c_str();
+  for (const std::string& w : l.scene.warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", path, w.c_str());
+  for (const std::string& w : l.world->warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", path, w.c_str());
+  for (const std::string& u : l.scene.unsupported)
+    std::fprintf(stderr, "kiln: warning: %s: not rendered yet: %s\n", path, u.c_str());
+}
+
+// One camera's render as the command line asks for it.
+struct CameraJob {
+  const CameraDesc& desc;
+  Camera camera;
+  IntegratorSettings settings;
+  uint32_t spp = 1;              // the frame's samples per pixel
+  uint32_t first = 0, last = 1;  // the sample range rendered (--spp-range)
+  std::optional<Crop> crop;
+  RenderOptions options;
+  uint32_t aovs = 0;  // AovFlag bits (--aov)
+  Film film;
+
+  CameraJob(const RenderArgs& args, const LoadedScene& l, const CameraDesc& cd, const std::atomic<bool>& cancel)
+      : desc(cd),
+        camera(cd),
+        settings(camera_settings(cd, l.scene, l.rules, args.rules,
+                                 args.all_features ? kFeatureAll : l.world->features)),
+        spp(args.spp.value_or(uint32_t(std::max(1, cd.num_samples)))),
+        last(spp),
+        film(camera.width(), camera.height()) {
+    if (args.spp_range) std::tie(first, last) = parse_spp_range(*args.spp_range);
+    if (args.crop) crop = parse_crop(*args.crop, camera.width(), camera.height());
+    options.crop = crop;
+    options.seed = args.seed;
+    options.spp_total = spp;
+    options.progress = !args.quiet;
+    options.cancel = &cancel;
+    options.reverse_tile_order = args.reverse_tiles;
+    options.filter = pixel_filter_for(cd, args.filter);
+    if (args.adaptive) options.adaptive = AdaptiveSampling{*args.adaptive, args.adaptive_min_spp};
+    if (args.aovs) aovs = parse_aovs(*args.aovs);
+    if (aovs & kAovSurface) film.keep_surfaces();  // the samples record what they see (renderer/integrators/aov.h)
+  }
+  std::string stem() const { return stem_of(desc.image_name, "camera" + desc.id); }
+  Crop region() const { return crop.value_or(Crop{0, camera.width(), 0, camera.height()}); }
+};
+
+struct FrameResult {
+  RenderStats stats;
+  std::optional<ErrorStats> final_error;  // --reference
+  std::string csv_path;                   // --reference: the error after every wave
+};
+
+// Waves of doubling spp (renderer/render/progressive.h): the error against the reference after each, and/or a stop
+// before the time budget runs out. job.last becomes the samples the waves completed.
+FrameResult render_in_waves(const RenderArgs& args, const LoadedScene& l, CameraJob& job) {
+  if (args.spp_range || args.crop)
+    throw Error("--time-limit/--reference", "", "cannot be combined with --crop or --spp-range");
+  ProgressiveOptions po;
+  po.time_limit_seconds = args.time_limit;
+  FrameResult r;
+  ProgressiveResult pr;
+  if (args.reference) {
+    const Image reference = read_exr(*args.reference).rgb;
+    const ErrorCurve curve =
+        render_error_curve(*l.world, job.camera, job.settings, job.options, job.spp, reference, po, job.film);
+    pr = curve.render;
+    r.final_error = curve.final_error;
+    std::string csv = wave_csv_header();
+    for (const MeasuredWave& w : curve.waves) csv += wave_csv_line(w);
+    r.csv_path = (std::filesystem::path(args.out_dir) / (job.stem() + ".convergence.csv")).string();
+    std::filesystem::create_directories(args.out_dir);
+    std::ofstream(r.csv_path) << csv;
+  } else {
+    pr = render_progressive(*l.world, job.camera, job.settings, job.options, job.spp, po, job.film);
+  }
+  r.stats = pr.stats;
+  job.last = pr.spp;
+  if (!args.quiet && pr.stopped_by_time_limit) std::fprintf(stderr, "kiln: time limit reached after %u spp\n", pr.spp);
+  return r;
+}
+
+FrameResult render_frame(const RenderArgs& args, const LoadedScene& l, CameraJob& job) {
+  if (!args.quiet)
+    std::fprintf(stderr, "kiln: camera %s: %dx%d, %u spp, %s: %s\n", job.desc.id.c_str(), job.camera.width(),
+                 job.camera.height(), job.spp, rules_name(l.rules), job.settings.describe().c_str());
+  if (args.time_limit || args.reference) return render_in_waves(args, l, job);
+  FrameResult r;
+  r.stats = render_samples(*l.world, job.camera, job.settings, job.options, job.first, job.last, job.film);
+  return r;
+}
+
+// What a frame's EXR says about how it was made (`kiln merge` checks the scene, the options and the sample ranges).
+Metadata frame_metadata(const RenderArgs& args, const LoadedScene& l, const CameraJob& job, const FrameResult& r,
+                        const SampleCounts& counts) {
+  Metadata meta = {{"kiln:version", KILN_VERSION},
+                   {"kiln:scene", args.scene},
+                   {"kiln:camera", job.desc.id},
+                   {"kiln:spp", std::to_string(job.last - job.first)},
+                   {"kiln:spp_first", std::to_string(job.first)},
+                   {"kiln:spp_last", std::to_string(job.last)},
+                   {"kiln:spp_total", std::to_string(job.spp)},
+                   {"kiln:scene_hash", l.fingerprint.hash},
+                   {"kiln:scene_files", scene_files_metadata(l.fingerprint)},
+                   {"kiln:seed", std::to_string(args.seed)},
+                   {"kiln:rules", rules_name(l.rules)},
+                   {"kiln:integrator", job.settings.describe()},
+                   {"kiln:render_options", render_options(args)},
+                   {"kiln:render_seconds", std::to_string(r.stats.seconds)},
+                   {"kiln:filter", describe_pixel_filter(job.options.filter)},
+                   {"kiln:mean_spp", std::to_string(counts.mean)},
+                   {"kiln:incomplete", r.stats.cancelled ? "true" : "false"}};
+  if (job.options.adaptive)
+    meta.emplace_back("kiln:adaptive_threshold", std::to_string(job.options.adaptive->threshold));
+  if (r.final_error) {
+    meta.emplace_back("kiln:reference", *args.reference);
+    meta.emplace_back("kiln:mse", std::to_string(r.final_error->mse));
+    meta.emplace_back("kiln:relmse", std::to_string(r.final_error->rel_mse));
+    meta.emplace_back("kiln:rmse", std::to_string(r.final_error->rmse));
+  }
+  return meta;
+}
+
+struct WrittenFrame {
+  std::string exr, png;
+  SampleCounts counts;
+};
+
+// The frame's EXR (with its AOV layers; a crop as a data window) and PNG preview.
+WrittenFrame write_frame(const RenderArgs& args, const LoadedScene& l, const CameraJob& job, const FrameResult& r) {
+  WrittenFrame out;
+  out.exr = (std::filesystem::path(args.out_dir) / (job.stem() + ".exr")).string();
+  out.png = (std::filesystem::path(args.out_dir) / (job.stem() + ".png")).string();
+  const Image full = job.film.mean();
+  out.counts = sample_counts(job.film, job.region());
+  std::vector<AovLayer> aovs = aov_layers(job.film, job.aovs);
+  const Image img = job.crop ? crop_image(full, *job.crop) : full;
+  if (job.crop) aovs = crop_layers(std::move(aovs), job.camera.width(), *job.crop);
+  std::optional<DataWindow> window;
+  if (job.crop) window = DataWindow{job.crop->x0, job.crop->y0, job.camera.width(), job.camera.height()};
+  write_exr(out.exr, img, aovs, frame_metadata(args, l, job, r, out.counts), window);
+  write_png(out.png, to_ldr(img, preview_for_camera(job.desc, l.scene)), img.width(), img.height());
+  return out;
+}
+
+struct RayRates {
+  double mrays = 0;        // millions of rays per second
+  double query_share = 0;  // of the thread time, in accelerator queries
+};
+
+RayRates ray_rates(const RenderStats& rs) {
+  const double query_seconds = double(rs.rays.query_cycles()) / tsc_frequency();
+  const double thread_seconds = rs.seconds * double(tbb::this_task_arena::max_concurrency());
+  return {double(rs.rays.total()) / std::max(rs.seconds, 1e-9) / 1e6, query_seconds / std::max(1e-9, thread_seconds)};
+}
+
+void print_frame_summary(const RenderStats& rs, const RayRates& rates, bool media) {
+  if (rs.has_nan)
+    std::fprintf(stderr, "kiln: warning: %llu non-finite samples dropped (first at pixel %d,%d sample %llu)\n",
+                 (unsigned long long)rs.rays.nan_samples, rs.nan_x, rs.nan_y, (unsigned long long)rs.nan_sample);
+  std::fprintf(stderr,
+               "kiln: %.2fs, %.2f Mrays/s (primary %llu, shadow %llu, indirect %llu), %.0f%% of thread time in "
+               "ray queries\n",
+               rs.seconds, rates.mrays, (unsigned long long)rs.rays.primary, (unsigned long long)rs.rays.shadow,
+               (unsigned long long)rs.rays.indirect, 100.0 * rates.query_share);
+  if (media)
+    std::fprintf(stderr, "kiln: media: %llu tracked segments, %.2f steps per segment, majorant efficiency %.2f\n",
+                 (unsigned long long)rs.rays.media.rays, rs.rays.media.steps_per_ray(),
+                 rs.rays.media.majorant_efficiency());
+}
+
+nlohmann::json camera_json(const RenderArgs& args, const LoadedScene& l, const CameraJob& job, const FrameResult& r,
+                           const WrittenFrame& out, const RayRates& rates) {
+  const RenderStats& rs = r.stats;
+  nlohmann::json cam = {{"id", job.desc.id},
+                        {"exr", out.exr},
+                        {"png", out.png},
+                        {"width", job.camera.width()},
+                        {"height", job.camera.height()},
+                        {"spp", job.spp},
+                        {"rules", rules_name(l.rules)},
+                        {"integrator", job.settings.describe()},
+                        {"render_seconds", rs.seconds},
+                        {"rays",
+                         {{"primary", rs.rays.primary}, {"shadow", rs.rays.shadow}, {"indirect", rs.rays.indirect}}},
+                        {"mrays_per_second", rates.mrays},
+                        {"ray_query_share", rates.query_share},
+                        {"nan_samples", rs.rays.nan_samples},
+                        {"filter", describe_pixel_filter(job.options.filter)},
+                        {"mean_spp", out.counts.mean},
+                        {"incomplete", rs.cancelled}};
+  if (job.options.adaptive)
+    cam["adaptive"] = {{"threshold", job.options.adaptive->threshold}, {"min_spp", job.options.adaptive->min_samples()},
+                       {"converged_fraction", out.counts.converged_fraction}};
+  if (!l.world->media.empty()) cam["media"] = media_stats_json(rs.rays.media);
+  if (r.final_error)
+    cam["error"] = {{"reference", *args.reference}, {"mse", r.final_error->mse}, {"relmse", r.final_error->rel_mse},
+                    {"rmse", r.final_error->rmse}, {"csv", r.csv_path}};
+  return cam;
+}
+
+// Written under a temporary name and moved into place, so a reader never sees half a file.
+void write_stats_file(const std::string& path, const nlohmann::json& stats) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    if (!f) throw Error(path, "", "cannot write stats file");
+    f << stats.dump(2) << "\n";
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace
 
 int cmd_render(const RenderArgs& args) {
   const auto t_start = std::chrono::steady_clock::now();
   std::unique_ptr<tbb::global_control> threads;
   if (args.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(args.threads));
+  check_render_args(args);
+  const LoadedScene l = load_for_render(args);
+  if (!args.quiet) print_scene_warnings(args, l);
 
-  if (args.filter) (void)parse_pixel_filter(*args.filter);  // bad input is reported before any work
-  if (args.adaptive && args.spp_range)
-    throw Error("--adaptive", "", "cannot be combined with --spp-range: a pixel's stopping decision needs all its "
-                                  "samples from index 0");
-
-  LoadOptions lo;
-  lo.subdivide = args.subdivide;
-  SceneFingerprint fingerprint;  // identifies the scene in the metadata of split renders (renderer/render/merge.h)
-  SceneDesc scene = load_scene_fingerprinted(args.scene, lo, fingerprint);  // its meshes are handed to the world
-  const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  if (scene.cameras.empty()) throw Error(args.scene, "", "scene has no camera");
-  std::vector<const CameraDesc*> cameras;
-  for (const CameraDesc& c : scene.cameras)
-    if (!args.camera || c.id == *args.camera) cameras.push_back(&c);
-  if (cameras.empty()) throw Error(args.scene, "", "no camera with id '" + *args.camera + "'");
-
-  const SceneRules rules = resolve_rules(scene, args.rules);
-  WorldOptions wo;
-  wo.accel = args.accel;
-  wo.ellipsoid_pdf = ellipsoid_pdf(rules, args.rules);
-  wo.env_map_sampling = env_map_sampling(rules, args.rules);
-  const uint32_t aov_flags = args.aovs ? parse_aovs(*args.aovs) : 0u;
-  const auto world = build_world_taking_meshes(scene, wo);
-  if (!args.quiet) {
-    for (const std::string& w : scene.warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", args.scene.c_str(), w.c_str());
-    for (const std::string& w : world->warnings) std::fprintf(stderr, "kiln: warning: %s: %s\n", args.scene.c_str(), w.c_str());
-    for (const std::string& u : scene.unsupported)
-      std::fprintf(stderr, "kiln: warning: %s: not rendered yet: %s\n", args.scene.c_str(), u.c_str());
-  }
-
-  g_interrupted.store(false);
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-
-  nlohmann::json stats;
-  stats["scene"] = args.scene;
-  stats["kiln_version"] = KILN_VERSION;
-  stats["parse_seconds"] = parse_seconds;
-  stats["world"] = world_stats_json(*world);
-  stats["cameras"] = nlohmann::json::array();
-  bool interrupted = false;
+  const InterruptGuard interrupt;
+  nlohmann::json stats = {{"scene", args.scene},
+                          {"kiln_version", KILN_VERSION},
+                          {"parse_seconds", l.parse_seconds},
+                          {"world", world_stats_json(*l.world)},
+                          {"cameras", nlohmann::json::array()}};
   const bool is_part = args.crop || args.spp_range;
-
-  for (const CameraDesc* cd : cameras) {
-    const Camera camera(*cd);
-    const IntegratorSettings settings =
-        camera_settings(*cd, scene, rules, args.rules, args.all_features ? kFeatureAll : world->features);
-    const uint32_t spp = args.spp.value_or(uint32_t(std::max(1, cd->num_samples)));
-    uint32_t first = 0, last = spp;
-    if (args.spp_range) std::tie(first, last) = parse_spp_range(*args.spp_range);
-    std::optional<Crop> crop;
-    if (args.crop) crop = parse_crop(*args.crop, camera.width(), camera.height());
-    RenderOptions ro;
-    ro.crop = crop;
-    ro.seed = args.seed;
-    ro.spp_total = spp;
-    ro.progress = !args.quiet;
-    ro.cancel = &g_interrupted;
-    ro.reverse_tile_order = args.reverse_tiles;
-    ro.filter = pixel_filter_for(*cd, args.filter);
-    if (args.adaptive) ro.adaptive = AdaptiveSampling{*args.adaptive, args.adaptive_min_spp};
-    Film film(camera.width(), camera.height());
-    if (!args.quiet)
-      std::fprintf(stderr, "kiln: camera %s: %dx%d, %u spp, %s: %s\n", cd->id.c_str(), camera.width(), camera.height(),
-                   spp, rules_name(rules), settings.describe().c_str());
-    RenderStats rs;
-    std::optional<ErrorStats> final_error;
-    std::string csv_path;
-    if (args.time_limit || args.reference) {
-      // Waves of doubling spp: error against the reference after each, and/or stop before the budget runs out.
-      if (args.spp_range || args.crop) throw Error("--time-limit/--reference", "", "cannot be combined with --crop or --spp-range");
-      Image reference;
-      ProgressiveOptions po;
-      po.time_limit_seconds = args.time_limit;
-      if (args.reference) {
-        reference = read_exr(*args.reference).rgb;
-        po.reference = &reference;
-      }
-      std::string csv = wave_csv_header();
-      po.on_wave = [&](const WaveReport& w) { csv += wave_csv_line(w); };
-      const ProgressiveResult pr = render_progressive(*world, camera, settings, ro, spp, po, film);
-      rs = pr.stats;
-      last = pr.spp;
-      final_error = pr.final_error;
-      if (args.reference) {
-        csv_path = (std::filesystem::path(args.out_dir) / (stem_of(cd->image_name, "camera" + cd->id) + ".convergence.csv")).string();
-        std::filesystem::create_directories(args.out_dir);
-        std::ofstream(csv_path) << csv;
-      }
-      if (!args.quiet && pr.stopped_by_time_limit)
-        std::fprintf(stderr, "kiln: time limit reached after %u spp\n", pr.spp);
-    } else {
-      rs = render_samples(*world, camera, settings, ro, first, last, film);
-    }
-    interrupted = rs.cancelled;
+  bool interrupted = false;
+  for (const size_t c : l.cameras) {
+    CameraJob job(args, l, l.scene.cameras[c], interrupt.flag());
+    const FrameResult r = render_frame(args, l, job);
+    interrupted = r.stats.cancelled;
     // A part of a split frame (--crop / --spp-range) cut short holds unequal sample counts that `kiln merge`
     // cannot weigh: it is not written, so the merge sees the range as missing and a re-run fills it.
     if (interrupted && is_part) break;
-
-    const std::string stem = stem_of(cd->image_name, "camera" + cd->id);
-    const std::string exr = (std::filesystem::path(args.out_dir) / (stem + ".exr")).string();
-    const std::string png = (std::filesystem::path(args.out_dir) / (stem + ".png")).string();
-    const Image full = film.mean();
-    const SampleCounts counts = sample_counts(film, crop.value_or(Crop{0, camera.width(), 0, camera.height()}));
-    std::vector<AovLayer> aovs;
-    double aov_seconds = 0.0;
-    if (aov_flags) {
-      const auto t_aov = std::chrono::steady_clock::now();
-      aovs = render_aovs(*world, camera, aov_flags, film, ro, std::min(kAovSamplesPerPixel, spp));
-      aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_aov).count();
-    }
-    const Image img = crop ? crop_image(full, *crop) : full;
-    if (crop) aovs = crop_layers(std::move(aovs), camera.width(), *crop);
-    std::optional<DataWindow> window;
-    if (crop) window = DataWindow{crop->x0, crop->y0, camera.width(), camera.height()};
-    Metadata meta = {{"kiln:version", KILN_VERSION},
-                     {"kiln:scene", args.scene},
-                     {"kiln:camera", cd->id},
-                     {"kiln:spp", std::to_string(last - first)},
-                     {"kiln:spp_first", std::to_string(first)},
-                     {"kiln:spp_last", std::to_string(last)},
-                     {"kiln:spp_total", std::to_string(spp)},
-                     {"kiln:scene_hash", fingerprint.hash},
-                     {"kiln:scene_files", std::to_string(fingerprint.files)},
-                     {"kiln:seed", std::to_string(args.seed)},
-                     {"kiln:rules", rules_name(rules)},
-                     {"kiln:integrator", settings.describe()},
-                     {"kiln:render_options", render_options(args)},
-                     {"kiln:render_seconds", std::to_string(rs.seconds)},
-                     {"kiln:filter", describe_pixel_filter(ro.filter)},
-                     {"kiln:mean_spp", std::to_string(counts.mean)},
-                     {"kiln:incomplete", rs.cancelled ? "true" : "false"}};
-    if (ro.adaptive) meta.emplace_back("kiln:adaptive_threshold", std::to_string(ro.adaptive->threshold));
-    if (final_error) {
-      meta.emplace_back("kiln:reference", *args.reference);
-      meta.emplace_back("kiln:mse", std::to_string(final_error->mse));
-      meta.emplace_back("kiln:relmse", std::to_string(final_error->rel_mse));
-      meta.emplace_back("kiln:rmse", std::to_string(final_error->rmse));
-    }
-    write_exr(exr, img, aovs, meta, window);
-    write_png(png, to_ldr(img, preview_for_camera(*cd, scene)), img.width(), img.height());
-
-    const double query_seconds = double(rs.rays.query_cycles()) / tsc_frequency();
-    const double query_share = query_seconds / std::max(1e-9, rs.seconds * double(tbb::this_task_arena::max_concurrency()));
-    const double mrays = double(rs.rays.total()) / std::max(rs.seconds, 1e-9) / 1e6;
-    if (rs.has_nan && !args.quiet)
-      std::fprintf(stderr, "kiln: warning: %llu non-finite samples dropped (first at pixel %d,%d sample %llu)\n",
-                   (unsigned long long)rs.rays.nan_samples, rs.nan_x, rs.nan_y, (unsigned long long)rs.nan_sample);
-    if (!args.quiet)
-      std::fprintf(stderr,
-                   "kiln: %.2fs, %.2f Mrays/s (primary %llu, shadow %llu, indirect %llu), %.0f%% of thread time in "
-                   "ray queries\n",
-                   rs.seconds, mrays, (unsigned long long)rs.rays.primary, (unsigned long long)rs.rays.shadow,
-                   (unsigned long long)rs.rays.indirect, 100.0 * query_share);
-    if (!args.quiet && !world->media.empty())
-      std::fprintf(stderr, "kiln: media: %llu tracked segments, %.2f steps per segment, majorant efficiency %.2f\n",
-                   (unsigned long long)rs.rays.media.rays, rs.rays.media.steps_per_ray(),
-                   rs.rays.media.majorant_efficiency());
-
-    std::printf("%s\n%s\n", exr.c_str(), png.c_str());
+    const WrittenFrame out = write_frame(args, l, job, r);
+    const RayRates rates = ray_rates(r.stats);
+    if (!args.quiet) print_frame_summary(r.stats, rates, !l.world->media.empty());
+    std::printf("%s\n%s\n", out.exr.c_str(), out.png.c_str());
     std::fflush(stdout);
-
-    nlohmann::json cam = {{"id", cd->id},
-                                {"exr", exr},
-                                {"png", png},
-                                {"width", camera.width()},
-                                {"height", camera.height()},
-                                {"spp", spp},
-                                {"rules", rules_name(rules)},
-                                {"integrator", settings.describe()},
-                                {"render_seconds", rs.seconds},
-                                {"aov_seconds", aov_seconds},
-                                {"rays", {{"primary", rs.rays.primary}, {"shadow", rs.rays.shadow}, {"indirect", rs.rays.indirect}}},
-                                {"mrays_per_second", mrays},
-                                {"ray_query_share", query_share},
-                                {"nan_samples", rs.rays.nan_samples},
-                                {"filter", describe_pixel_filter(ro.filter)},
-                                {"mean_spp", counts.mean},
-                                {"incomplete", rs.cancelled}};
-    if (ro.adaptive)
-      cam["adaptive"] = {{"threshold", ro.adaptive->threshold}, {"min_spp", ro.adaptive->min_samples()},
-                         {"converged_fraction", counts.converged_fraction}};
-    if (!world->media.empty())
-      cam["media"] = media_stats_json(rs.rays.media);
-    if (final_error)
-      cam["error"] = {{"reference", *args.reference}, {"mse", final_error->mse}, {"relmse", final_error->rel_mse},
-                      {"rmse", final_error->rmse}, {"csv", csv_path}};
-    stats["cameras"].push_back(cam);
+    stats["cameras"].push_back(camera_json(args, l, job, r, out, rates));
     if (interrupted) break;
   }
   stats["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  if (args.stats_path) {
-    const std::string tmp = *args.stats_path + ".tmp";
-    {
-      std::ofstream f(tmp);
-      if (!f) throw Error(*args.stats_path, "", "cannot write stats file");
-      f << stats.dump(2) << "\n";
-    }
-    std::filesystem::rename(tmp, *args.stats_path);
-  }
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  if (args.stats_path) write_stats_file(*args.stats_path, stats);
   if (interrupted) {
     std::fprintf(stderr, is_part ? "kiln: interrupted; the part was not written\n"
                                  : "kiln: interrupted; wrote the samples so far (marked incomplete)\n");

@@ -16,7 +16,7 @@
 // - the glossy coat of a dielectric scatters only outside (from inside, total internal reflection in a sphere would
 //   keep a coat-scattered path there for good, and the course roulette, surviving while the potential is >= 1,
 //   would never end it).
-#include "renderer/integrators/path_vertex.h"
+#include "renderer/integrators/vertex_steps.h"
 
 namespace kiln {
 namespace {
@@ -26,30 +26,78 @@ inline constexpr uint32_t kBranchDimension = kStratifiedDimensions;
 // Split continuations per camera sample; past it the delta lobe is sampled instead (also unbiased), so glass seen
 // through glass cannot multiply the work without bound.
 inline constexpr int kMaxSplitBranches = 8;
-// Expected mode ends paths with Kiln's roulette after this many bounces.
-inline constexpr int kExpectedModeRrMinDepth = 3;
 
-// A pending continuation of the Fresnel split.
+// A pending continuation of the Fresnel split: a path that left a delta bounce.
 struct PathBranch {
-  Ray ray;
-  Rgb beta, potential;
-  float eta_scale;
+  PathState path;
+  Rgb potential;
   int depth;
 };
 
+// The pending continuations of one camera sample.
+struct Branches {
+  PathBranch pending[kMaxSplitBranches];
+  int n_pending = 0, n_split = 0;
+  bool room_for_split() const { return n_split + 2 <= kMaxSplitBranches; }
+};
+
+// The course's roulette on arrival at a vertex past the camera's, from the path's potential: Literal flips the coin
+// (a survivor's throughput is divided by p; stop: the path ends after this vertex's direct light), Expected flips
+// none and weights this vertex's emission and direct light by 1 + extra, extra = 1 - p.
+struct ArrivalRoulette {
+  bool stop = false;
+  float extra = 0.0f;
+};
+
+ArrivalRoulette course_roulette(CourseRoulette mode, Rgb potential, uint32_t dim, Sampler& sampler, Rgb& beta) {
+  ArrivalRoulette r;
+  const float survive = std::min(1.0f, potential.max_component());
+  if (mode == CourseRoulette::Expected) {
+    r.extra = 1.0f - survive;
+  } else if (sampler.set_dimension(dim + kRouletteDimension); sampler.next_float() >= survive) {
+    r.stop = true;
+  } else {
+    beta *= 1.0f / survive;
+  }
+  return r;
+}
+
+// The Fresnel split: every delta branch of m (reflection, refraction) becomes a pending continuation with its
+// Fresnel weight, perturbed by the material's roughness.
+void split_delta_branches(const Material& m, const SurfaceInteraction& si, const Frame& frame, Vec3f wo, Vec3f wo_l,
+                          const PathState& p, Rgb potential, int depth, Sampler& sampler, Branches& b) {
+  DeltaBranch branches[2];
+  const int nb = m.delta_branches(wo_l, branches);
+  sampler.set_dimension(kBranchDimension);
+  for (int i = 0; i < nb; ++i) {
+    const auto wb_l = perturb(branches[i].wi, m.roughness, sampler.next_2d());
+    if (!wb_l) continue;
+    const Vec3f wb = frame.to_world(*wb_l);
+    const Rgb bb = p.beta * branches[i].weight;
+    if (!consistent_sides(si, wo, wb, wo_l, *wb_l) || bb.is_black() || !bb.is_finite()) continue;
+    PathState next = p;
+    next.beta = bb;
+    if (branches[i].transmission) next.eta_scale *= sqr(branches[i].etap);
+    next.after_specular = true;
+    move_on(next, si, spawn_ray(si.p, si.ng, wb, p.ray.time, si.extent));
+    b.pending[b.n_pending++] = PathBranch{next, potential, depth + 1};
+    ++b.n_split;
+  }
+}
+
 template <bool kDelta, bool kDielectric, bool kMeshesOnly>
-Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ray& camera_ray, Vec2f film,
-                           Sampler& sampler, RayCounters& c) {
+Rgb course_path(const RenderContext& ctx, const CoursePathSettings& s, const Ray& camera_ray, Vec2f film,
+                Sampler& sampler, RayCounters& c, VisibleSurface* visible) {
+  const World& w = ctx.world;
   const DirectionSampling directions = s.importance_sampling ? DirectionSampling::Brdf : DirectionSampling::Uniform;
   const bool roulette = s.roulette != CourseRoulette::Off;
   const bool use_nee = s.nee && !w.lights.empty();
-  const int max_depth = s.max_depth < 0 ? kMaxPathVertices : std::min(s.max_depth, kMaxPathVertices);
-  Rgb L(0.0f), beta(1.0f), potential(1.0f);
-  float eta_scale = 1.0f;
-  Ray ray = camera_ray;
-  bool after_specular = true;
-  PathBranch pending[kMaxSplitBranches];
-  int n_pending = 0, n_split = 0, start_depth = 0;
+  const int max_depth = path_depth_limit(s.max_depth);
+  PathState p{camera_ray};
+  p.visible = visible;
+  Rgb L(0.0f), potential(1.0f);
+  Branches branches;
+  int start_depth = 0;
   bool first_branch = true;
   Material textured;  // the material of the current vertex when it is textured
 
@@ -57,69 +105,36 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
     for (int depth = start_depth;; ++depth) {
       const uint32_t dim = first_branch ? vertex_dimension(depth) : kBranchDimension;
       Hit hit;
-      const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
-                                                               : query_intersect(w, ray, hit, c, depth == 0);
+      const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, p.ray, hit, c)
+                                                               : query_intersect(w, p.ray, hit, c, depth == 0);
       if (!found) {
-        if (depth == 0) L += beta * camera_background(w, film);
-        if (after_specular || !use_nee) L += beta * escaped_radiance(w, ray.d, LightQuery{}, [](float) { return 1.0f; });
+        if (depth == 0) L += p.beta * camera_background(w, film);
+        if (p.after_specular || !use_nee)
+          L += p.beta * escaped_radiance(w, p.ray.d, LightQuery{}, [](float) { return 1.0f; });
         break;
       }
-      SurfaceInteraction si = make_interaction<kMeshesOnly>(w, ray, hit);
-      const Vec3f wo = -ray.d;
-      bool stop = false;
-      float extra = 0.0f;  // Expected mode: the terminated branch's share 1 - p of this vertex's direct light
-      if (roulette && depth > 0) {
-        const float survive = std::min(1.0f, potential.max_component());
-        if (s.roulette == CourseRoulette::Expected) {
-          extra = 1.0f - survive;
-        } else if (sampler.set_dimension(dim + kRouletteDimension); sampler.next_float() >= survive) {
-          stop = true;
-        } else {
-          beta *= 1.0f / survive;
-        }
-      }
-      if (si.light >= 0 && (after_specular || !use_nee))
-        L += beta * emitted(w.lights[size_t(si.light)], si.ng, wo) * (1.0f + extra);
-      if (!si.material) break;
-      if (Rgb unlit; apply_hit_textures(w, si, textured, unlit)) {
-        L += beta * unlit;
-        break;
-      }
-      const bool last_vertex = depth >= max_depth || stop;
+      SurfaceInteraction si = make_interaction<kMeshesOnly>(w, p.ray, hit);
+      const Vec3f wo = -p.ray.d;
+      const ArrivalRoulette rr =
+          roulette && depth > 0 ? course_roulette(s.roulette, potential, dim, sampler, p.beta) : ArrivalRoulette{};
+      if (si.light >= 0 && (p.after_specular || !use_nee))
+        L += p.beta * emitted(w.lights[size_t(si.light)], si.ng, wo) * (1.0f + rr.extra);
+      if (!resolve_material(ctx, si, textured, p, L)) break;
+      const bool last_vertex = depth >= max_depth || rr.stop;
       if (last_vertex && !use_nee) break;
+      orient_at_vertex<kDielectric>(si, wo, p);
       const Material& m = *si.material;
-      if constexpr (kDielectric) {
-        if (exits_dielectric(si, ray.d)) beta *= m.transmittance(hit.t * length(ray.d));
-        orient_normals(si, wo);
-      } else if (dot(wo, si.ng) < 0.0f) {
-        si.ng = -si.ng;
-        si.ns = -si.ns;
-      }
       const Frame frame(si.ns);
       const Vec3f wo_l = frame.to_local(wo);
-      const bool split = kDelta && m.has_delta() && n_split + 2 <= kMaxSplitBranches;
+      const bool split = kDelta && m.has_delta() && branches.room_for_split();
 
       if (use_nee && m.has_surface())
-        if (const auto dl = sample_direct_light(w, si, frame, wo, wo_l, dim, ray.time, sampler, c))
-          L += beta * dl->value * (1.0f + extra);
+        if (const auto dl = sample_direct_light(w, si, frame, wo, wo_l, dim, p.ray.time, sampler, c))
+          L += p.beta * dl->value * (1.0f + rr.extra);
       if (last_vertex) break;
 
       if constexpr (kDelta) {
-        if (split) {
-          DeltaBranch branches[2];
-          const int nb = m.delta_branches(wo_l, branches);
-          sampler.set_dimension(kBranchDimension);
-          for (int i = 0; i < nb; ++i) {
-            const auto wb_l = perturb(branches[i].wi, m.roughness, sampler.next_2d());
-            if (!wb_l) continue;
-            const Vec3f wb = frame.to_world(*wb_l);
-            const Rgb bb = beta * branches[i].weight;
-            if (!consistent_sides(si, wo, wb, wo_l, *wb_l) || bb.is_black() || !bb.is_finite()) continue;
-            const float es = branches[i].transmission ? eta_scale * sqr(branches[i].etap) : eta_scale;
-            pending[n_pending++] = PathBranch{spawn_ray(si.p, si.ng, wb, ray.time, si.extent), bb, potential, es, depth + 1};
-            ++n_split;
-          }
-        }
+        if (split) split_delta_branches(m, si, frame, wo, wo_l, p, potential, depth, sampler, branches);
       }
       sampler.set_dimension(dim + kLobeDimension);
       const auto ds = sample_direction<kDelta>(directions, m, wo_l, sampler, split);
@@ -127,31 +142,18 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
       if constexpr (kDielectric) {
         if (roulette && !ds->specular && is_dielectric(m) && wo_l.z < 0.0f) break;
       }
-      const Vec3f wi = frame.to_world(ds->wi_local);
-      if (!consistent_sides(si, wo, wi, wo_l, ds->wi_local)) break;
-      beta *= ds->f * (abs_cos_theta(ds->wi_local) / ds->pdf);
+      if (!scatter(p, si, frame, wo, wo_l, *ds)) break;
       // Delta bounces, which the course follows deterministically, leave the potential alone.
       if (!ds->specular) potential *= ds->f;
-      if (beta.is_black() || !beta.is_finite()) break;
-      if (ds->transmission) eta_scale *= sqr(ds->eta);
-      after_specular = ds->specular;
-
-      if (s.roulette == CourseRoulette::Expected && depth >= kExpectedModeRrMinDepth) {
-        const float survive = std::min(1.0f, beta.max_component() * eta_scale);
-        sampler.set_dimension(dim + kRouletteDimension);
-        if (sampler.next_float() >= survive) break;
-        beta *= 1.0f / survive;
-      }
-      ray = spawn_ray(si.p, si.ng, wi, ray.time, si.extent);
+      // Expected mode ends paths with Kiln's roulette, from Kiln's depth on.
+      const bool kiln_roulette = s.roulette == CourseRoulette::Expected && depth >= kKilnRouletteMinDepth;
+      if (kiln_roulette && !survives_roulette(p, dim, sampler)) break;
     }
-    if (n_pending == 0) break;
-    const PathBranch& b = pending[--n_pending];
-    ray = b.ray;
-    beta = b.beta;
+    if (branches.n_pending == 0) break;
+    const PathBranch& b = branches.pending[--branches.n_pending];
+    p = b.path;
     potential = b.potential;
-    eta_scale = b.eta_scale;
     start_depth = b.depth;
-    after_specular = true;  // a delta bounce: emitters it reaches are counted in full
     first_branch = false;
   }
   return L;
@@ -159,11 +161,10 @@ Rgb trace_course_path_impl(const World& w, const CoursePathSettings& s, const Ra
 
 }  // namespace
 
-Rgb trace_course_path(const World& w, const CoursePathSettings& s, uint32_t features, const Ray& ray, Vec2f film,
-                      Sampler& sampler, RayCounters& c) {
-  return dispatch_on_features(features, [&](auto delta, auto dielectric, auto meshes_only) {
-    return trace_course_path_impl<decltype(delta)::value, decltype(dielectric)::value, decltype(meshes_only)::value>(
-        w, s, ray, film, sampler, c);
+Rgb integrate(const RenderContext& ctx, const CoursePathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
+              RayCounters& c, VisibleSurface* visible) {
+  return dispatch_on_features(ctx.settings.features, [&]<bool kDelta, bool kDielectric, bool kMeshesOnly>() {
+    return course_path<kDelta, kDielectric, kMeshesOnly>(ctx, s, ray, film, sampler, c, visible);
   });
 }
 

@@ -48,8 +48,10 @@ Rgb direct_from_lights(const World& w, const CourseRaySettings& s, const Surface
 }
 
 // film: the camera ray's pixel (renderer/integrators/integrator.h), for the background texture camera rays see.
-Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, Vec2f film, int depth,
-                    Sampler& sampler, RayCounters& c) {
+// visible: the camera sample's record for the AOVs (or null); travelled: the length of the rays before `ray`.
+Rgb trace_recursive(const RenderContext& ctx, const CourseRaySettings& s, const Ray& ray, Vec2f film, int depth,
+                    Sampler& sampler, RayCounters& c, VisibleSurface* visible, float travelled) {
+  const World& w = ctx.world;
   Hit hit;
   const bool found = depth == 0 && s.cull_camera_backfaces ? query_camera_culled(w, ray, hit, c)
                                                            : query_intersect(w, ray, hit, c, depth == 0);
@@ -64,9 +66,16 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
   const Vec3f wo = -ray.d;
   Rgb L(0.0f);
   if (si.light >= 0) L += emitted(w.lights[size_t(si.light)], si.ng, wo);
-  if (!si.material) return L;
+  if (!si.material) {
+    see_resolved_surface(visible, si, ray, travelled, nullptr);
+    return L;
+  }
   Material textured;
-  if (Rgb unlit; apply_hit_textures(w, si, textured, unlit)) return L + unlit;
+  if (Rgb unlit; apply_hit_textures(ctx, si, textured, unlit)) {
+    see_resolved_surface(visible, si, ray, travelled, &unlit);
+    return L + unlit;
+  }
+  see_resolved_surface(visible, si, ray, travelled, nullptr);
   const Material& m = *si.material;
   const bool inside_dielectric = exits_dielectric(si, ray.d);
   const Rgb attenuation = inside_dielectric ? m.transmittance(hit.t * length(ray.d)) : Rgb(1.0f);
@@ -77,6 +86,7 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
     if (m.has_surface()) L += direct_from_lights(w, s, si, frame, wo, ray.time, sampler, c);
   }
   if (m.has_delta() && depth < s.max_depth) {
+    const float next_travelled = visible && !visible->found ? travelled + hit.t * length(ray.d) : travelled;
     DeltaBranch branches[2];
     const int n = m.delta_branches(frame.to_local(wo), branches);
     for (int i = 0; i < n; ++i) {
@@ -85,8 +95,8 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
       const Vec3f wi = frame.to_world(*wi_l);
       // Undo the radiance scaling: the course weighs refraction by 1 - F alone.
       const Rgb weight = branches[i].transmission ? branches[i].weight * sqr(branches[i].etap) : branches[i].weight;
-      L += weight * trace_recursive(w, s, spawn_course_ray(si, wi, s.ray_epsilon, ray.time), film, depth + 1,
-                                                 sampler, c);
+      L += weight * trace_recursive(ctx, s, spawn_course_ray(si, wi, s.ray_epsilon, ray.time), film, depth + 1,
+                                    sampler, c, visible, next_travelled);
     }
   }
   return L * attenuation;
@@ -94,9 +104,9 @@ Rgb trace_recursive(const World& w, const CourseRaySettings& s, const Ray& ray, 
 
 }  // namespace
 
-Rgb trace_course_rays(const World& world, const CourseRaySettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
-                      RayCounters& c) {
-  return trace_recursive(world, s, ray, film, 0, sampler, c);
+Rgb integrate(const RenderContext& ctx, const CourseRaySettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
+              RayCounters& c, VisibleSurface* visible) {
+  return trace_recursive(ctx, s, ray, film, 0, sampler, c, visible, 0.0f);
 }
 
 }  // namespace kiln

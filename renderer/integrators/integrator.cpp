@@ -50,17 +50,11 @@ std::string IntegratorSettings::describe() const {
   return d;
 }
 
-Rgb trace(const World& world, const IntegratorSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
-          RayCounters& c) {
-  Rgb L;
-  if (const auto* p = std::get_if<PathSettings>(&s.method))
-    L = trace_path(world, *p, s.features, ray, film, sampler, c);
-  else if (const auto* v = std::get_if<VolPathSettings>(&s.method))
-    L = trace_vol_path(world, *v, s.features, ray, film, sampler, c);
-  else if (const auto* cp = std::get_if<CoursePathSettings>(&s.method))
-    L = trace_course_path(world, *cp, s.features, ray, film, sampler, c);
-  else
-    L = trace_course_rays(world, std::get<CourseRaySettings>(s.method), ray, film, sampler, c);
+Rgb trace(const RenderContext& ctx, const Ray& ray, Vec2f film, Sampler& sampler, RayCounters& c,
+          VisibleSurface* visible) {
+  const IntegratorSettings& s = ctx.settings;
+  Rgb L =
+      std::visit([&](const auto& method) { return integrate(ctx, method, ray, film, sampler, c, visible); }, s.method);
   if (s.clamp > 0.0f) {
     const float mx = L.max_component();
     if (mx > s.clamp) L *= s.clamp / mx;

@@ -4,9 +4,10 @@
 #pragma once
 #include <optional>
 
+#include "renderer/integrators/aov.h"
 #include "renderer/integrators/integrator.h"
-#include "renderer/world/ray_query.h"
 #include "renderer/integrators/shading.h"
+#include "renderer/world/ray_query.h"
 
 namespace kiln {
 
@@ -88,6 +89,37 @@ std::optional<DirectionSample> sample_direction(DirectionSampling directions, co
   pdf *= (1.0f - pd);
   if (pdf <= 0.0f) return std::nullopt;
   return DirectionSample{wi, m.eval(wo_l, wi), pdf, false, false};
+}
+
+// Surfaces a camera sample looks through for its AOVs (renderer/film/visible_surface.h): nothing but delta lobes.
+inline bool looked_through(const Material& m) {
+  return !m.has_surface() || !(m.surface_flags() & (kLobeDiffuse | kLobeGlossy));
+}
+
+// Records si as what the camera sample sees, unless something was recorded already or nobody asked (visible null).
+// travelled: the path's length before the ray that found si; albedo() is only evaluated for the record. si's
+// shading normal must be final (textures, bump and normal maps applied).
+template <typename Albedo>
+void see_surface(VisibleSurface* visible, const SurfaceInteraction& si, const Ray& ray, float travelled,
+                 Albedo&& albedo) {
+  if (!visible || visible->found) return;
+  const Rgb a = albedo();
+  visible->albedo = Rgb(std::clamp(a.r, 0.0f, 1.0f), std::clamp(a.g, 0.0f, 1.0f), std::clamp(a.b, 0.0f, 1.0f));
+  visible->n = dot(si.ns, ray.d) > 0.0f ? -si.ns : si.ns;
+  visible->p = si.p;
+  visible->z = travelled + si.t * length(ray.d);
+  visible->found = true;
+}
+
+// The hit as the AOVs see it once its material is resolved: a material's reflectance colour, a replace_all texture's
+// colour (unlit), white for an emitter without a material; mirrors and glass are looked through.
+inline void see_resolved_surface(VisibleSurface* visible, const SurfaceInteraction& si, const Ray& ray,
+                                 float travelled, const Rgb* unlit) {
+  if (!visible || visible->found) return;
+  if (unlit) see_surface(visible, si, ray, travelled, [&] { return *unlit; });
+  else if (!si.material) see_surface(visible, si, ray, travelled, [] { return Rgb(1.0f); });
+  else if (!looked_through(*si.material))
+    see_surface(visible, si, ray, travelled, [&] { return material_albedo(*si.material); });
 }
 
 // One light sample at a surface vertex: the selector's light, a point on it, the shadow ray.

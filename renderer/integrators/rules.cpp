@@ -8,19 +8,8 @@
 namespace kiln {
 namespace {
 
-// Kiln's path-tracing depth when the scene gives no MaxRecursionDepth.
-inline constexpr int kKilnDefaultMaxDepth = 8;
-// The course ray tracer's recursion depth when a scene gives no MaxRecursionDepth.
-inline constexpr int kCourseDefaultRecursion = 5;
-// The course path tracer's depth without MaxRecursionDepth and without roulette.
-inline constexpr int kCourseDefaultPathDepth = 8;
-// The course framework's ShadowRayEpsilon when a scene gives none (its parser's default).
-inline constexpr float kCourseDefaultShadowRayEpsilon = 1e-3f;
 inline constexpr char kRrSuffix[] = "+rr";
 inline constexpr char kHeroSuffix[] = "+hero";
-// Whether the course renderer culls back faces for camera rays when a scene does not say (README, "Course
-// conventions").
-inline constexpr bool kCourseCullsCameraBackfaces = false;
 
 bool is_course(SceneRules r) { return r != SceneRules::Kiln; }
 

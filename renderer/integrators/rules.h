@@ -1,13 +1,14 @@
 // The seam between Kiln's rules and the courses' (README, "Two rule sets"): which rule set renders a scene, and the
-// integrator settings every camera gets from it. Every default and every command-line override of the integrators is
-// decided here and nowhere else.
+// integrator settings every camera gets from it. Every command-line override of the integrators is decided here; the
+// defaults the rule sets start from are named once, in renderer/integrators/settings.h (k...Default...).
 //
-//   Kiln             Kiln's path tracer: MIS of NEE and BRDF sampling (power heuristic), unbiased roulette after 3
-//                    bounces, MaxRecursionDepth (else 8) bounces, exact light densities, jittered pixel samples.
-//   CENG795 course   cameras without a renderer: the course ray tracer (MaxRecursionDepth, else 5; ShadowRayEpsilon
-//                    offsets); PathTracing cameras: the course path tracer with the camera's RendererParams (its
-//                    roulette, NEE at the last vertex, the Fresnel split); ellipsoid lights divided by their
-//                    object-space cone pdf; 1 spp samples pixel centres.
+//   Kiln             Kiln's path tracer: MIS of NEE and BRDF sampling (power heuristic), unbiased roulette after
+//                    kKilnRouletteMinDepth bounces, MaxRecursionDepth (else kKilnDefaultMaxDepth) bounces, exact light
+//                    densities, jittered pixel samples.
+//   CENG795 course   cameras without a renderer: the course ray tracer (MaxRecursionDepth, else
+//                    kCourseDefaultRecursion; ShadowRayEpsilon offsets); PathTracing cameras: the course path tracer
+//                    with the camera's RendererParams (its roulette, NEE at the last vertex, the Fresnel split);
+//                    ellipsoid lights divided by their object-space cone pdf; 1 spp samples pixel centres.
 //   CS171 course     the framework's iterative path tracer: NEE without MIS, no roulette, max_depth vertices gather
 //                    direct light (spec §7), which is Kiln's path tracer with the nee strategy and max_depth bounces.
 #pragma once

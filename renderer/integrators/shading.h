@@ -1,8 +1,9 @@
 // Shared shading helpers for the integrators.
 #pragma once
 #include "core/frame.h"
+#include "renderer/integrators/render_context.h"
+#include "renderer/world/hit_textures.h"
 #include "renderer/world/interaction.h"
-#include "renderer/texture/scene_textures.h"
 
 namespace kiln {
 
@@ -10,12 +11,13 @@ namespace kiln {
 // albedo 1 would otherwise never terminate).
 inline constexpr int kMaxPathVertices = 1024;
 
-// Textures of the hit (renderer/texture/scene_textures.h): a textured hit shades with `scratch`, its material with
-// the texel's k_d / k_s, and a bent shading normal. Returns true when a replace_all texture gives the surface's
-// colour outright in `unlit`. Untextured hits (every hit of an untextured scene) only test one integer.
-inline bool apply_hit_textures(const World& w, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
+// Textures of the hit (renderer/world/hit_textures.h): a textured hit shades with `scratch`, its material with
+// the texel's k_d / k_s, and a bent shading normal; footprints are measured in the context's camera's pixels.
+// Returns true when a replace_all texture gives the surface's colour outright in `unlit`. Untextured hits (every hit
+// of an untextured scene) only test one integer.
+inline bool apply_hit_textures(const RenderContext& ctx, SurfaceInteraction& si, Material& scratch, Rgb& unlit) {
   if (si.textures < 0) return false;
-  return apply_textures(*w.textures, si, scratch, unlit);
+  return apply_textures(*ctx.world.textures, ctx.pixel_spread, si, scratch, unlit);
 }
 
 inline bool is_dielectric(const Material& m) { return std::holds_alternative<Dielectric>(m.delta); }

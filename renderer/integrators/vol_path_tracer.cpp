@@ -19,7 +19,7 @@
 // at medium vertices, phase sampling otherwise), NEE on or off, MIS on or off.
 #include <cstring>
 
-#include "renderer/integrators/path_vertex.h"
+#include "renderer/integrators/vertex_steps.h"
 
 namespace kiln {
 namespace {
@@ -68,13 +68,14 @@ struct LightConnection {
 template <bool kDelta, bool kDielectric, bool kMeshesOnly>
 class VolumetricPath {
  public:
-  VolumetricPath(const World& w, const PathSettings& s, Sampler& sampler, RayCounters& c)
-      : w_(w),
+  VolumetricPath(const RenderContext& ctx, const PathSettings& s, Sampler& sampler, RayCounters& c)
+      : ctx_(ctx),
+        w_(ctx.world),
         s_(s),
         sampler_(sampler),
         c_(c),
-        use_nee_(s.nee && !w.lights.empty()),
-        max_depth_(s.max_depth < 0 ? kMaxPathVertices : std::min(s.max_depth, kMaxPathVertices)) {
+        use_nee_(s.nee && !ctx.world.lights.empty()),
+        max_depth_(path_depth_limit(s.max_depth)) {
     sampler_.set_dimension(kHeroChannelDimension);
     hero_ = std::min(2, int(sampler_.next_float() * 3.0f));
     sampler_.set_dimension(kTrackingSeedDimension);
@@ -82,14 +83,15 @@ class VolumetricPath {
     rng_ = Rng(mix64(bits_of(seed.x)), mix64(bits_of(seed.y) + 1));
   }
 
-  Rgb trace(const Ray& camera_ray, int camera_medium, Vec2f film) {
-    ray_ = camera_ray;
+  Rgb trace(const Ray& camera_ray, int camera_medium, Vec2f film, VisibleSurface* visible) {
+    p_.ray = camera_ray;
+    p_.visible = visible;
     medium_ = camera_medium;
     Material textured;  // the material of the current vertex when it is textured
     for (int segment = 0; segment < kMaxSegments; ++segment) {
       const uint32_t dim = segment_dimension(segment);
       Hit hit;
-      const bool found = query_intersect(w_, ray_, hit, c_, segment == 0);
+      const bool found = query_intersect(w_, p_.ray, hit, c_, segment == 0);
       if (medium_ >= 0) {
         const Step step = track_medium(found ? hit.t : kInfinity, dim);
         if (step == Step::Ended) break;
@@ -99,19 +101,24 @@ class VolumetricPath {
         add_escaped(film);
         break;
       }
-      SurfaceInteraction si = make_interaction<kMeshesOnly>(w_, ray_, hit);
+      SurfaceInteraction si = make_interaction<kMeshesOnly>(w_, p_.ray, hit);
       add_surface_emission(si);
-      if (!si.material) break;
-      if (si.material->passes_through) {
+      if (si.material && si.material->passes_through) {
         cross_boundary(si);
         continue;
       }
-      if (Rgb unlit; apply_hit_textures(w_, si, textured, unlit)) {
-        L_ += beta_ * unlit / average(r_u_);
+      if (!si.material) {
+        see_resolved_surface(p_.visible, si, p_.ray, p_.travelled, nullptr);
         break;
       }
+      if (Rgb unlit; apply_hit_textures(ctx_, si, textured, unlit)) {
+        L_ += p_.beta * unlit / average(r_u_);
+        see_resolved_surface(p_.visible, si, p_.ray, p_.travelled, &unlit);
+        break;
+      }
+      see_resolved_surface(p_.visible, si, p_.ray, p_.travelled, nullptr);
       if (depth_++ >= max_depth_) break;
-      if (!scatter_at_surface(si, hit.t, dim) || !roulette(dim)) break;
+      if (!scatter_at_surface(si, dim) || !roulette(dim)) break;
     }
     return L_;
   }
@@ -126,7 +133,7 @@ class VolumetricPath {
     const float m = r_u_.max_component();
     if (!(m > kRescaleAbove)) return;
     const float k = 1.0f / m;
-    beta_ *= k;
+    p_.beta *= k;
     r_u_ *= k;
     r_l_ *= k;
   }
@@ -147,7 +154,7 @@ class VolumetricPath {
     bool scattered = false, ended = false;
     Vec3f scatter_point;
     const Rgb t_end = sample_collisions(
-        w_.media[size_t(medium_)], ray_, tmax, u, rng_, hero_,
+        w_.media[size_t(medium_)], p_.ray, tmax, u, rng_, hero_,
         [&](Vec3f p, const MediumProperties& mp, Rgb sigma_maj, Rgb t_maj) {
           count_collision(mp, sigma_maj);
           if (depth_ < max_depth_ && !mp.le.is_black()) add_medium_emission(mp, sigma_maj, t_maj);
@@ -166,13 +173,13 @@ class VolumetricPath {
             return false;
           }
           null_collision(mp, sigma_maj, t_maj);
-          return !beta_.is_black() && !r_u_.is_black();
+          return !p_.beta.is_black() && !r_u_.is_black();
         });
-    if (ended || beta_.is_black() || r_u_.is_black()) return Step::Ended;
+    if (ended || p_.beta.is_black() || r_u_.is_black()) return Step::Ended;
     if (scattered) return scatter_in_medium(scatter_point, dim) && roulette(dim) ? Step::Scattered : Step::Ended;
     if (!(t_end[hero_] > 0.0f)) return Step::Ended;
     const Rgb ratio = t_end / t_end[hero_];
-    beta_ *= ratio;
+    p_.beta *= ratio;
     r_u_ *= ratio;
     r_l_ *= ratio;
     return Step::Passed;
@@ -183,12 +190,12 @@ class VolumetricPath {
     const float pdf = sigma_maj[hero_] * t_maj[hero_];
     const Rgb r_e = r_u_ * sigma_maj * t_maj / pdf;
     const float denominator = average(r_e);
-    if (denominator > 0.0f) L_ += beta_ * t_maj / pdf * mp.sigma_a * mp.le / denominator;
+    if (denominator > 0.0f) L_ += p_.beta * t_maj / pdf * mp.sigma_a * mp.le / denominator;
   }
 
   void real_scattering(const MediumProperties& mp, Rgb t_maj) {
     const float pdf = t_maj[hero_] * mp.sigma_s[hero_];
-    beta_ *= t_maj * mp.sigma_s / pdf;
+    p_.beta *= t_maj * mp.sigma_s / pdf;
     r_u_ *= t_maj * mp.sigma_s / pdf;
     rescale();
   }
@@ -197,10 +204,10 @@ class VolumetricPath {
     const Rgb sigma_n = clamp_zero(sigma_maj - mp.sigma_a - mp.sigma_s);
     const float pdf = t_maj[hero_] * sigma_n[hero_];
     if (!(pdf > 0.0f)) {
-      beta_ = Rgb(0.0f);
+      p_.beta = Rgb(0.0f);
       return;
     }
-    beta_ *= t_maj * sigma_n / pdf;
+    p_.beta *= t_maj * sigma_n / pdf;
     r_u_ *= t_maj * sigma_n / pdf;
     r_l_ *= t_maj * sigma_maj / pdf;
     rescale();
@@ -209,14 +216,14 @@ class VolumetricPath {
   // The vertex of a real scattering event at p: a light sample, then a direction from the phase function.
   bool scatter_in_medium(Vec3f p, uint32_t dim) {
     const HenyeyGreenstein& phase = medium_phase(w_.media[size_t(medium_)]);
-    const Vec3f wo = -ray_.d;
+    const Vec3f wo = -p_.ray.d;
     const bool uniform = s_.directions == DirectionSampling::Uniform;
     const auto phase_pdf = [&](Vec3f wi) { return uniform ? uniform_sphere_pdf() : phase.pdf(wo, wi); };
     const LightQuery here{p, Vec3f(0.0f)};
     if (use_nee_)
       add_direct_light(here, dim, [&](const LightSample& ls) -> std::optional<LightConnection> {
         return LightConnection{Rgb(phase.p(wo, ls.wi)), phase_pdf(ls.wi),
-                               Ray{p, ls.p_light - p, 0.0f, kShadowRayEndFraction, ray_.time}, medium_};
+                               Ray{p, ls.p_light - p, 0.0f, kShadowRayEndFraction, p_.ray.time}, medium_};
       });
     sampler_.set_dimension(dim + kDirectionDimension);
     const Vec2f u = sampler_.next_2d();
@@ -233,32 +240,33 @@ class VolumetricPath {
       f = ps->p;
       pdf = ps->pdf;
     }
-    beta_ *= f / pdf;
+    p_.beta *= f / pdf;
     r_l_ = r_u_ / pdf;
-    specular_ = false;
+    p_.after_specular = false;
     prev_ = here;
-    ray_ = Ray{p, wi, 0.0f, kInfinity, ray_.time};
-    return !beta_.is_black();
+    if (p_.visible && !p_.visible->found) p_.travelled += length(p - p_.ray.o);
+    p_.ray = Ray{p, wi, 0.0f, kInfinity, p_.ray.time};
+    return !p_.beta.is_black();
   }
 
   // ---- at surfaces ----
 
   void add_surface_emission(const SurfaceInteraction& si) {
     if (si.light < 0) return;
-    const Rgb le = emitted(w_.lights[size_t(si.light)], si.ng, -ray_.d);
+    const Rgb le = emitted(w_.lights[size_t(si.light)], si.ng, -p_.ray.d);
     if (le.is_black()) return;
-    if (specular_ || !use_nee_) {
-      L_ += beta_ * le / average(r_u_);
+    if (p_.after_specular || !use_nee_) {
+      L_ += p_.beta * le / average(r_u_);
     } else if (s_.mis) {
       const float light_pdf = emitter_pdf(w_, si.light, prev_, si);
-      L_ += beta_ * le / average(r_u_ + r_l_ * light_pdf);
+      L_ += p_.beta * le / average(r_u_ + r_l_ * light_pdf);
     }
   }
 
   void add_escaped(Vec2f film) {
-    if (depth_ == 0) L_ += beta_ * camera_background(w_, film) / average(r_u_);
-    L_ += beta_ * escaped_radiance(w_, ray_.d, prev_, [&](float light_pdf) {
-            if (specular_ || !use_nee_) return 1.0f / average(r_u_);
+    if (depth_ == 0) L_ += p_.beta * camera_background(w_, film) / average(r_u_);
+    L_ += p_.beta * escaped_radiance(w_, p_.ray.d, prev_, [&](float light_pdf) {
+            if (p_.after_specular || !use_nee_) return 1.0f / average(r_u_);
             return s_.mis ? 1.0f / average(r_u_ + r_l_ * light_pdf) : 0.0f;
           });
   }
@@ -266,21 +274,15 @@ class VolumetricPath {
   // A surface that only bounds media: the ray goes on in the medium on the far side.
   void cross_boundary(const SurfaceInteraction& si) {
     const MediumInterface& sides = w_.shape_data[si.shape].media;
-    if (sides.transition()) medium_ = sides.entered(ray_.d, si.ng);
-    ray_ = spawn_ray(si.p, si.ng, ray_.d, ray_.time, si.extent);
+    if (sides.transition()) medium_ = sides.entered(p_.ray.d, si.ng);
+    move_on(p_, si, spawn_ray(si.p, si.ng, p_.ray.d, p_.ray.time, si.extent));
   }
 
-  bool scatter_at_surface(SurfaceInteraction& si, float hit_t, uint32_t dim) {
+  bool scatter_at_surface(SurfaceInteraction& si, uint32_t dim) {
     const Material& m = *si.material;
-    const Vec3f wo = -ray_.d;
+    const Vec3f wo = -p_.ray.d;
     const Vec3f outward = si.ng;  // the shape's own orientation, which tells its media apart
-    if constexpr (kDielectric) {
-      if (exits_dielectric(si, ray_.d)) beta_ *= m.transmittance(hit_t);
-      orient_normals(si, wo);
-    } else if (dot(wo, si.ng) < 0.0f) {
-      si.ng = -si.ng;
-      si.ns = -si.ns;
-    }
+    orient_at_vertex<kDielectric>(si, wo, p_);
     const Frame frame(si.ns);
     const Vec3f wo_l = frame.to_local(wo);
     const MediumInterface& sides = w_.shape_data[si.shape].media;
@@ -292,31 +294,25 @@ class VolumetricPath {
         if (!consistent_sides(si, wo, ls.wi, wo_l, wi_l)) return std::nullopt;
         return LightConnection{m.eval(wo_l, wi_l) * abs_cos_theta(wi_l),
                                direction_pdf<kDelta>(s_.directions, m, wo_l, wi_l, false),
-                               spawn_ray_to(si.p, si.ng, ls.p_light, ray_.time, si.extent), medium_towards(ls.wi)};
+                               spawn_ray_to(si.p, si.ng, ls.p_light, p_.ray.time, si.extent), medium_towards(ls.wi)};
       });
 
     sampler_.set_dimension(dim + kLobeDimension);
     const auto ds = sample_direction<kDelta>(s_.directions, m, wo_l, sampler_, false);
-    if (!ds) return false;
-    const Vec3f wi = frame.to_world(ds->wi_local);
-    if (!consistent_sides(si, wo, wi, wo_l, ds->wi_local)) return false;
-    beta_ *= ds->f * (abs_cos_theta(ds->wi_local) / ds->pdf);
+    if (!ds || !scatter(p_, si, frame, wo, wo_l, *ds)) return false;
     r_l_ = r_u_ / ds->pdf;
-    if (ds->transmission) eta_scale_ *= sqr(ds->eta);
-    specular_ = ds->specular;
     prev_ = LightQuery{si.p, si.ns};
-    medium_ = medium_towards(wi);
-    ray_ = spawn_ray(si.p, si.ng, wi, ray_.time, si.extent);
-    return !beta_.is_black() && beta_.is_finite();
+    medium_ = medium_towards(p_.ray.d);
+    return true;
   }
 
   // Kiln's throughput roulette on the path's estimate beta / r_u, after rr_min_depth scattering events.
   bool roulette(uint32_t dim) {
     if (!s_.russian_roulette || depth_ <= s_.rr_min_depth) return true;
-    const float survive = std::min(1.0f, (beta_ * (eta_scale_ / average(r_u_))).max_component());
+    const float survive = std::min(1.0f, (p_.beta * (p_.eta_scale / average(r_u_))).max_component());
     sampler_.set_dimension(dim + kRouletteDimension);
     if (sampler_.next_float() >= survive) return false;
-    beta_ *= 1.0f / survive;
+    p_.beta *= 1.0f / survive;
     return true;
   }
 
@@ -340,7 +336,7 @@ class VolumetricPath {
     r_l *= r_u_ * (ls->pdf * pmf);
     r_u *= r_u_ * lc->scatter_pdf;
     const float denominator = average(ls->delta || !s_.mis ? r_l : r_l + r_u);
-    if (denominator > 0.0f) L_ += beta_ * lc->f * t_ray * ls->li / denominator;
+    if (denominator > 0.0f) L_ += p_.beta * lc->f * t_ray * ls->li / denominator;
   }
 
   // Transmittance along a shadow ray (ray.d = the light's point - origin, ray.tmax just short of 1), crossing
@@ -395,6 +391,7 @@ class VolumetricPath {
     return true;
   }
 
+  const RenderContext& ctx_;
   const World& w_;
   const PathSettings& s_;
   Sampler& sampler_;
@@ -404,23 +401,20 @@ class VolumetricPath {
   int hero_ = 0;
   Rng rng_;  // tracking decisions past each segment's first collision
 
-  Ray ray_;
-  int medium_ = -1;  // the medium ray_ travels in (index into World::media), -1: vacuum
-  Rgb L_{0.0f}, beta_{1.0f}, r_u_{1.0f}, r_l_{1.0f};
+  PathState p_;      // the ray, throughput beta, eta scale and whether the last bounce was specular
+  int medium_ = -1;  // the medium p_.ray travels in (index into World::media), -1: vacuum
+  Rgb L_{0.0f}, r_u_{1.0f}, r_l_{1.0f};
   int depth_ = 0;          // real scattering events so far
-  bool specular_ = true;   // the camera ray counts as one: emitters it sees are counted in full
-  float eta_scale_ = 1.0f; // product of eta^2 over transmissions (path_tracer.cpp)
   LightQuery prev_{};      // the last scattering vertex, for the density with which NEE would have found an emitter
 };
 
 }  // namespace
 
-Rgb trace_vol_path(const World& w, const VolPathSettings& s, uint32_t features, const Ray& ray, Vec2f film,
-                   Sampler& sampler, RayCounters& c) {
-  return dispatch_on_features(features, [&](auto delta, auto dielectric, auto meshes_only) {
-    VolumetricPath<decltype(delta)::value, decltype(dielectric)::value, decltype(meshes_only)::value> path(
-        w, s.path, sampler, c);
-    return path.trace(ray, s.camera_medium, film);
+Rgb integrate(const RenderContext& ctx, const VolPathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
+              RayCounters& c, VisibleSurface* visible) {
+  return dispatch_on_features(ctx.settings.features, [&]<bool kDelta, bool kDielectric, bool kMeshesOnly>() {
+    VolumetricPath<kDelta, kDielectric, kMeshesOnly> path(ctx, s.path, sampler, c);
+    return path.trace(ray, s.camera_medium, film, visible);
   });
 }
 

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "renderer/render/scene_fingerprint.h"
 
 namespace kiln {
 namespace {
@@ -15,8 +16,10 @@ struct IdentityKey {
   const char* key;
   const char* what;
 };
+constexpr const char* kSceneHashKey = "kiln:scene_hash";
+constexpr const char* kSceneFilesKey = "kiln:scene_files";
 constexpr IdentityKey kIdentityKeys[] = {
-    {"kiln:scene_hash", "scene (hash of its files)"},
+    {kSceneHashKey, "scene (hash of its files)"},
     {"kiln:camera", "camera"},
     {"kiln:seed", "seed"},
     {"kiln:spp_total", "total spp"},
@@ -76,6 +79,17 @@ Part read_part(const std::string& path) {
   return p;
 }
 
+// The first scene file whose hash differs between two parts (renderer/render/scene_fingerprint.h), as a clause of
+// the refusal; empty when the parts' scenes agree or a part lists no files (written by an older kiln).
+std::string file_difference(const Part& p, const Part& ref) {
+  if (p.header.find(kSceneHashKey) == ref.header.find(kSceneHashKey)) return "";
+  const auto a = parse_scene_files_metadata(p.header.find(kSceneFilesKey));
+  const auto b = parse_scene_files_metadata(ref.header.find(kSceneFilesKey));
+  if (a.empty() || b.empty()) return "";
+  const auto d = first_file_difference(a, b);
+  return d ? "; first scene file that differs: " + *d : "";
+}
+
 void check_same_frame(const Part& p, const Part& ref) {
   const DataWindow &a = p.header.window, &b = ref.header.window;
   if (a.full_width != b.full_width || a.full_height != b.full_height)
@@ -86,7 +100,7 @@ void check_same_frame(const Part& p, const Part& ref) {
     const std::string va = p.header.find(k.key), vb = ref.header.find(k.key);
     if (va != vb)
       throw Error(p.path, "", std::string(k.what) + " differs from " + ref.path + " (" + k.key + " '" + va + "' vs '" +
-                                  vb + "'); a merge combines parts of one frame only");
+                                  vb + "'" + file_difference(p, ref) + "); a merge combines parts of one frame only");
   }
 }
 
@@ -170,6 +184,80 @@ std::vector<SampleGap> find_missing(const std::vector<Part>& parts, int width, i
   return out;
 }
 
+// The AOV channels of a part (one layer per channel, as read_exr returns them), in file order.
+std::vector<std::string> aov_channels(const ExrFile& f) {
+  std::vector<std::string> names;
+  for (const AovLayer& l : f.aovs) names.insert(names.end(), l.channels.begin(), l.channels.end());
+  return names;
+}
+
+void check_same_channels(const std::string& path, const std::vector<std::string>& have, const std::string& ref_path,
+                         const std::vector<std::string>& want) {
+  if (have == want) return;
+  const auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const std::string& c : v) s += (s.empty() ? "" : ",") + c;
+    return s.empty() ? std::string("none") : s;
+  };
+  throw Error(path, "", "AOV channels (" + join(have) + ") differ from " + ref_path + " (" + join(want) +
+                            "); render every part with the same --aov");
+}
+
+// A per-pixel variance of the mean (the Variance AOV) combines as the variance of the merged mean, sum n_i^2 v_i /
+// N^2 over independent parts; every other channel is a per-pixel mean like the colour, sum n_i v_i / N.
+bool is_variance(const std::string& channel) { return channel.rfind("Variance.", 0) == 0; }
+
+// Every part's pixels weighted by its sample count, placed by its data window.
+struct FrameSums {
+  int width, height;
+  std::vector<double> rgb;                   // 3 per pixel
+  std::vector<std::vector<double>> channel;  // per AOV channel, 1 per pixel
+  std::vector<uint64_t> count;               // samples per pixel
+
+  FrameSums(int w, int h) : width(w), height(h), rgb(size_t(w) * size_t(h) * 3, 0.0), count(size_t(w) * size_t(h), 0) {}
+
+  void add(const Part& p, const ExrFile& f, const std::vector<std::string>& channels) {
+    channel.resize(channels.size(), std::vector<double>(count.size(), 0.0));
+    const double n = double(p.last - p.first);
+    for (int y = 0; y < f.rgb.height(); ++y)
+      for (int x = 0; x < f.rgb.width(); ++x) {
+        const size_t i = size_t(y + p.y0) * size_t(width) + size_t(x + p.x0);
+        const size_t local = size_t(y) * size_t(f.rgb.width()) + size_t(x);
+        const Rgb& c = f.rgb.at(x, y);
+        rgb[3 * i] += double(c.r) * n;
+        rgb[3 * i + 1] += double(c.g) * n;
+        rgb[3 * i + 2] += double(c.b) * n;
+        count[i] += p.last - p.first;
+        for (size_t k = 0; k < channels.size(); ++k)
+          channel[k][i] += double(f.aovs[k].data[local]) * (is_variance(channels[k]) ? n * n : n);
+      }
+  }
+
+  Image image() const {
+    Image img(width, height);
+    for (size_t i = 0; i < count.size(); ++i) {
+      if (count[i] == 0) continue;
+      const double inv = 1.0 / double(count[i]);
+      img.pixels()[i] = Rgb(float(rgb[3 * i] * inv), float(rgb[3 * i + 1] * inv), float(rgb[3 * i + 2] * inv));
+    }
+    return img;
+  }
+
+  std::vector<AovLayer> layers(const std::vector<std::string>& channels) const {
+    std::vector<AovLayer> out;
+    for (size_t k = 0; k < channels.size(); ++k) {
+      AovLayer l{{channels[k]}, std::vector<float>(count.size(), 0.0f)};
+      for (size_t i = 0; i < count.size(); ++i) {
+        if (count[i] == 0) continue;
+        const double inv = 1.0 / double(count[i]);
+        l.data[i] = float(channel[k][i] * (is_variance(channels[k]) ? inv * inv : inv));
+      }
+      out.push_back(std::move(l));
+    }
+    return out;
+  }
+};
+
 }  // namespace
 
 std::string SampleGap::to_args() const {
@@ -194,33 +282,23 @@ MergeResult merge_parts(const std::vector<std::string>& paths) {
     for (size_t i = 0; i < j; ++i) check_disjoint(parts[j], parts[i]);
 
   const int fw = parts[0].header.window.full_width, fh = parts[0].header.window.full_height;
-  std::vector<double> sum(size_t(fw) * size_t(fh) * 3, 0.0);
-  std::vector<uint64_t> count(size_t(fw) * size_t(fh), 0);
+  FrameSums sums(fw, fh);
+  std::vector<std::string> channels;  // the AOV channels of the first part, which every part must have
   for (const Part& p : parts) {
     const ExrFile f = read_exr(p.path);
     if (f.rgb.width() != p.x1 - p.x0 || f.rgb.height() != p.y1 - p.y0) throw Error(p.path, "", "pixels differ from its header");
-    const uint64_t n = p.last - p.first;
-    for (int y = 0; y < f.rgb.height(); ++y)
-      for (int x = 0; x < f.rgb.width(); ++x) {
-        const size_t i = size_t(y + p.y0) * size_t(fw) + size_t(x + p.x0);
-        const Rgb& c = f.rgb.at(x, y);
-        sum[3 * i] += double(c.r) * double(n);
-        sum[3 * i + 1] += double(c.g) * double(n);
-        sum[3 * i + 2] += double(c.b) * double(n);
-        count[i] += n;
-      }
+    if (&p == &parts[0]) channels = aov_channels(f);
+    else check_same_channels(p.path, aov_channels(f), parts[0].path, channels);
+    sums.add(p, f, channels);
   }
   MergeResult r;
-  r.image = Image(fw, fh);
-  for (size_t i = 0; i < count.size(); ++i) {
-    r.max_samples = std::max(r.max_samples, count[i]);
-    if (count[i] == 0) continue;
-    const double inv = 1.0 / double(count[i]);
-    r.image.pixels()[i] = Rgb(float(sum[3 * i] * inv), float(sum[3 * i + 1] * inv), float(sum[3 * i + 2] * inv));
-  }
+  r.image = sums.image();
+  r.aovs = sums.layers(channels);
+  r.max_samples = *std::max_element(sums.count.begin(), sums.count.end());
   r.spp_total = parse_count(parts[0].path, "kiln:spp_total", parts[0].header.find("kiln:spp_total"));
   for (const IdentityKey& k : kIdentityKeys) r.frame.emplace_back(k.key, parts[0].header.find(k.key));
   r.frame.emplace_back("kiln:scene", parts[0].header.find("kiln:scene"));
+  r.frame.emplace_back(kSceneFilesKey, parts[0].header.find(kSceneFilesKey));
   r.missing = find_missing(parts, fw, fh, r.spp_total);
   return r;
 }

@@ -1,6 +1,7 @@
 // Combines partial renders (crops and/or sample ranges of one frame, from `kiln render --crop --spp-range`) into
 // the frame a single run produces: each part's pixels are weighted by its sample count and placed by its data
-// window.
+// window, its AOV layers too (renderer/integrators/aov.h: filtered means like the colour; the variance of the mean
+// combines as that of the merged mean). Every part must carry the same AOV channels.
 //
 // Before any pixel is read, the parts' metadata must show they belong to one frame and fit together:
 //  - same scene (kiln:scene_hash, the bytes of every file the scene was loaded from), camera, seed, resolution,
@@ -26,6 +27,7 @@ struct SampleGap {
 
 struct MergeResult {
   Image image;
+  std::vector<AovLayer> aovs;     // the parts' AOV layers merged like the colour (one layer per channel)
   uint64_t spp_total = 0;         // the frame's samples per pixel
   uint64_t max_samples = 0;       // the most samples any pixel received (spp_total when complete)
   Metadata frame;                 // the identity keys every part shares (scene, camera, seed, ...)

@@ -1,9 +1,6 @@
 #include "renderer/render/progressive.h"
 
 #include <chrono>
-#include <cstdio>
-
-#include "core/error.h"
 
 namespace kiln {
 
@@ -27,10 +24,6 @@ ProgressiveResult render_progressive(const World& world, const Camera& camera, c
                                      const ProgressiveOptions& progressive, Film& film) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
-  const Image* ref = progressive.reference;
-  if (ref && (ref->width() != camera.width() || ref->height() != camera.height()))
-    throw Error("reference image is " + std::to_string(ref->width()) + "x" + std::to_string(ref->height()) +
-                " but the camera renders " + std::to_string(camera.width()) + "x" + std::to_string(camera.height()));
   RenderOptions ro = options;
   ro.spp_total = kProgressiveSppTotal;
 
@@ -68,25 +61,11 @@ ProgressiveResult render_progressive(const World& world, const Camera& camera, c
     w.spp = result.spp;
     w.seconds = result.stats.seconds;
     w.wave_seconds = rs.seconds;
-    if (ref) w.error = error_stats(film.mean(), *ref);
     result.waves.push_back(w);
     if (progressive.on_wave) progressive.on_wave(w);
     if (rs.cancelled) break;
   }
-  if (ref) result.final_error = result.waves.empty() ? error_stats(film.mean(), *ref) : result.waves.back().error;
   return result;
-}
-
-std::string wave_csv_header() { return "spp,seconds,mse,relmse,rmse\n"; }
-
-std::string wave_csv_line(const WaveReport& w) {
-  char buf[160];
-  if (w.error)
-    std::snprintf(buf, sizeof buf, "%u,%.6g,%.6g,%.6g,%.6g\n", w.spp, w.seconds, w.error->mse, w.error->rel_mse,
-                  w.error->rmse);
-  else
-    std::snprintf(buf, sizeof buf, "%u,%.6g,,,\n", w.spp, w.seconds);
-  return buf;
 }
 
 }  // namespace kiln

@@ -1,9 +1,9 @@
 // Progressive rendering in waves of doubling sample counts: wave 0 renders sample 0, wave k >= 1 renders samples
 // [2^(k-1), 2^k) (the last wave capped at max_spp), so after wave k every pixel holds min(2^k, max_spp) samples.
-// After each wave the caller hears how far the render got and, given a reference, how large the error is: the
-// raw data of an error-against-time curve. With a time limit the next wave's cost is predicted from the previous
-// wave's time per sample and the render stops before a wave that would overrun the budget (at least 1 spp is
-// always rendered).
+// After each wave the caller hears how far the render got (renderer/analysis/error_curve.h measures the film against
+// a reference there: the raw data of an error-against-time curve). With a time limit the next wave's cost is
+// predicted from the previous wave's time per sample and the render stops before a wave that would overrun the
+// budget (at least 1 spp is always rendered).
 //
 // Every prefix of waves must be an unbiased estimate of the pixel integral, so RenderOptions::spp_total is
 // overridden with kProgressiveSppTotal: the course's 1-spp pixel-centre convention never applies. Nothing is lost to
@@ -13,10 +13,8 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
-#include <string>
 #include <vector>
 
-#include "renderer/analysis/image_compare.h"
 #include "renderer/render/render.h"
 
 namespace kiln {
@@ -28,16 +26,15 @@ inline constexpr uint32_t kProgressiveSppTotal = 2;
 struct WaveReport {
   uint32_t wave = 0;          // 0-based wave index
   uint32_t spp = 0;           // samples per pixel after this wave (complete waves only)
-  double seconds = 0;         // render time so far (sum of the waves' render_samples time; no error metrics)
+  double seconds = 0;         // render time so far (sum of the waves' render_samples time; nothing the caller does)
   double wave_seconds = 0;    // this wave's render time
-  std::optional<ErrorStats> error;  // against ProgressiveOptions::reference, when given
   bool cancelled = false;     // the wave was interrupted: pixels hold different sample counts
 };
 
 struct ProgressiveOptions {
-  std::optional<double> time_limit_seconds;           // wall-clock budget for the whole progressive render
-  const Image* reference = nullptr;                   // same size as the camera's image; enables WaveReport::error
-  std::function<void(const WaveReport&)> on_wave;     // called after every wave (also a cancelled one)
+  std::optional<double> time_limit_seconds;        // wall-clock budget for the whole progressive render
+  std::function<void(const WaveReport&)> on_wave;  // called after every wave (also a cancelled one); counts against
+                                                   // the time limit
 };
 
 struct ProgressiveResult {
@@ -45,12 +42,11 @@ struct ProgressiveResult {
   uint32_t spp = 0;                    // samples per pixel of the last complete wave
   std::vector<WaveReport> waves;
   bool stopped_by_time_limit = false;  // stopped before max_spp because the next wave would overrun the budget
-  std::optional<ErrorStats> final_error;  // error of the final film (also after a cancelled wave)
 };
 
 // Renders up to max_spp samples per pixel into film (which must be empty and of the camera's size) in doubling
 // waves. Honours options.cancel between and inside waves; a cancelled wave leaves a valid film (Film keeps
-// per-pixel counts). Throws kiln::Error when the reference's size differs from the camera's.
+// per-pixel counts).
 ProgressiveResult render_progressive(const World& world, const Camera& camera, const IntegratorSettings& settings,
                                      const RenderOptions& options, uint32_t max_spp,
                                      const ProgressiveOptions& progressive, Film& film);
@@ -63,10 +59,5 @@ WaveRange wave_range(uint32_t wave, uint32_t max_spp);
 
 // Predicted render time of the wave after `done`: (its sample count) x (time per sample of `done`).
 double predict_next_wave_seconds(const WaveReport& done, uint32_t max_spp);
-
-// CSV for `kiln render --reference`: one line per wave, "spp,seconds,mse,relmse,rmse" (empty error fields
-// without a reference). Lines end in '\n'.
-std::string wave_csv_header();
-std::string wave_csv_line(const WaveReport& w);
 
 }  // namespace kiln

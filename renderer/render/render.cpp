@@ -9,7 +9,6 @@
 
 #include "core/error.h"
 #include "renderer/film/pixel_filter.h"
-#include "renderer/texture/scene_textures.h"
 
 namespace kiln {
 namespace {
@@ -80,8 +79,8 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
                       std::to_string(p.n) + " samples but the render starts at sample " + std::to_string(first) +
                       " (adaptive renders cannot be split into sample ranges)");
   const PixelFilter filter(options.filter);
-  // Texture footprints are measured in this camera's pixels (the world outlives one render; set, not built).
-  if (world.textures) world.textures->set_camera(camera.pixel_spread());
+  const RenderContext ctx(world, camera, settings, options, film);
+  const bool surfaces = film.keeps_surfaces();  // the integrators record what each sample saw only when asked
   std::vector<RenderStats> tile_stats(tiles.size());
   Progress progress(options.progress, tiles.size());
   // One task per tile; work stealing balances uneven tiles.
@@ -114,7 +113,8 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             // Only a scene with motion takes a time sample (from a dedicated stream: other values are unchanged).
             if (settings.features & kFeatureMotionBlur) ray.time = sampler.dedicated_1d(kTimeStream);
             sampler.set_dimension(kFirstPathDimension);
-            Rgb L = trace(world, settings, ray, film_position, sampler, st.rays);
+            VisibleSurface visible;
+            Rgb L = trace(ctx, ray, film_position, sampler, st.rays, surfaces ? &visible : nullptr);
             if (!L.is_finite() || L.has_negative()) {
               if (!st.has_nan) {
                 st.has_nan = true;
@@ -125,18 +125,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
               ++st.rays.nan_samples;
               L = Rgb(0.0f);
             }
-            L = L * fs.weight;
-            px.r += L.r;
-            px.g += L.g;
-            px.b += L.b;
-            const double lum = L.luminance();
-            px.lum2 += lum * lum;
-            if (s % 2 == 0) {
-              px.even_r += L.r;
-              px.even_g += L.g;
-              px.even_b += L.b;
-            }
-            ++px.n;
+            film.add_sample(x, y, s, L, fs.weight, visible);
             if (options.adaptive && options.adaptive->check_due(px.n)) px.converged = options.adaptive->converged(px);
           }
           if (options.on_pixel_done) options.on_pixel_done();

@@ -21,8 +21,6 @@
 
 namespace kiln {
 
-struct SurfaceInteraction;
-
 struct CompiledTexture {
   TextureSource source = TextureSource::Image;
   DecalMode decal = DecalMode::ReplaceKd;
@@ -103,9 +101,6 @@ class SceneTextures {
   // for every texture. A procedural one is evaluated at the point (u, v, 0) of the image plane.
   Rgb background_value(Vec2f film) const { return value(background_, film, Vec3f(film.x, film.y, 0.0f)); }
   const TextureBuildStats& stats() const { return stats_; }
-  // The camera whose pixels footprints are measured in: set before rendering with it (render_samples does).
-  void set_camera(const CameraSpread& camera) { camera_ = camera; }
-  const CameraSpread& camera() const { return camera_; }
   TextureCacheStats cache_stats() const;
 
  private:
@@ -128,15 +123,6 @@ class SceneTextures {
   } owner_;
   uint64_t generation_ = 0;  // tells a thread's cached record of this world from one of an earlier world's
   TextureBuildStats stats_;
-  CameraSpread camera_;
 };
-
-// The footprint of a hit in its texture coordinates, from the camera's pixel spread (renderer/texture/footprint.h).
-UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si);
-
-// Shading at a textured hit: sets si.material to `scratch` (the material with the texel's k_d / k_s) and bends
-// si.ns by bump or normal maps. Returns true when a replace_all texture gives the surface's colour outright
-// (`unlit`), without shading.
-bool apply_textures(const SceneTextures& textures, SurfaceInteraction& si, Material& scratch, Rgb& unlit);
 
 }  // namespace kiln

@@ -3,7 +3,6 @@
 #pragma once
 #include <cstdint>
 #include <string>
-#include <type_traits>
 
 namespace kiln {
 
@@ -32,22 +31,20 @@ enum Feature : uint32_t {
 
 std::string describe_features(uint32_t mask);
 
-// The integrators' specialisation on a scene's mask: calls f(delta, dielectric, meshes_only) with each flag a
-// std::bool_constant, so that f instantiates its kernel for the parts the scene has. Dielectrics imply delta lobes
-// (smooth interfaces); "meshes only" means no sphere, instance or moving-shape dispatch.
+// The integrators' specialisation on a scene's mask: calls f.template operator()<kDelta, kDielectric, kMeshesOnly>()
+// (f a lambda with a template parameter list), so that f instantiates its kernel for the parts the scene has.
+// Dielectrics imply delta lobes (smooth interfaces); "meshes only" means no sphere, instance or moving-shape dispatch.
 template <class F>
 decltype(auto) dispatch_on_features(uint32_t features, F&& f) {
-  using Yes = std::true_type;
-  using No = std::false_type;
   const bool delta = features & kFeatureDelta, dielectric = features & kFeatureDielectric;
   if (!(features & (kFeatureSpheres | kFeatureInstances | kFeatureMotionBlur))) {
-    if (dielectric) return f(Yes{}, Yes{}, Yes{});
-    if (delta) return f(Yes{}, No{}, Yes{});
-    return f(No{}, No{}, Yes{});
+    if (dielectric) return f.template operator()<true, true, true>();
+    if (delta) return f.template operator()<true, false, true>();
+    return f.template operator()<false, false, true>();
   }
-  if (dielectric) return f(Yes{}, Yes{}, No{});
-  if (delta) return f(Yes{}, No{}, No{});
-  return f(No{}, No{}, No{});
+  if (dielectric) return f.template operator()<true, true, false>();
+  if (delta) return f.template operator()<true, false, false>();
+  return f.template operator()<false, false, false>();
 }
 
 }  // namespace kiln

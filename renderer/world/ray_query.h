@@ -2,9 +2,34 @@
 #pragma once
 #include <x86intrin.h>
 
-#include "renderer/integrators/integrator.h"
+#include <cmath>
+#include <cstdint>
+
+#include "media/tracking.h"
+#include "renderer/world/world.h"
 
 namespace kiln {
+
+// Per-thread counters, merged per tile (no atomics on the hot path).
+struct RayCounters {
+  uint64_t primary = 0, shadow = 0, indirect = 0;
+  // TSC cycles spent inside accelerator queries, by ray kind (the query rate of each kind inside a render).
+  uint64_t primary_cycles = 0, shadow_cycles = 0, indirect_cycles = 0;
+  uint64_t nan_samples = 0;
+  TrackingCounters media;  // the volumetric path tracer's tracking through media
+  void add(const RayCounters& o) {
+    primary += o.primary;
+    shadow += o.shadow;
+    indirect += o.indirect;
+    primary_cycles += o.primary_cycles;
+    shadow_cycles += o.shadow_cycles;
+    indirect_cycles += o.indirect_cycles;
+    nan_samples += o.nan_samples;
+    media.add(o.media);
+  }
+  uint64_t total() const { return primary + shadow + indirect; }
+  uint64_t query_cycles() const { return primary_cycles + shadow_cycles + indirect_cycles; }
+};
 
 // TSC ticks per second, measured once against the steady clock: converts the query cycles counted below into
 // seconds (the ray-query time share of `kiln render`, the per-kind query rates of `kiln profile`).

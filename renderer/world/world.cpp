@@ -1,6 +1,7 @@
 #include "renderer/world/world.h"
 
 #include <chrono>
+#include <optional>
 #include <utility>
 
 #include "core/error.h"
@@ -70,8 +71,6 @@ void check_material(const SceneDesc& scene, int material, const std::string& nam
     throw Error(scene.source_path, name, "has no valid material");
 }
 
-// The 2019 files spell the square light's radiance <Intensity>; a 2019 student renamed it Radiance and the 2021
-// version of the same scene says Radiance, so both are read as radiance L (README, "Light conventions").
 // The motion a shape gets. Lights are sampled where they are at time 0, so an emitter keeps still (with a warning)
 // rather than be found by rays where its samples are not.
 Vec3f shape_motion(World& w, const std::string& name, Vec3f motion, int light) {
@@ -109,233 +108,313 @@ World::~World() = default;
 
 namespace {
 
-// `consumable`, when given, is `scene` itself: its meshes' arrays are moved into the world (left empty).
-std::unique_ptr<World> build_world_impl(const SceneDesc& scene, SceneDesc* consumable, const WorldOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  auto world = std::make_unique<World>();
-  World& w = *world;
-  w.background = scene.background;
-  w.ambient = scene.ambient_light;
-  w.unsupported = scene.unsupported;
+// The arrays of a mesh that the world keeps, moved out of the description by build_world_taking_meshes.
+struct MeshArrays {
+  std::vector<Vec3f> positions;
+  std::vector<uint32_t> indices;
+  std::vector<Vec3f> normals;
+  std::vector<Vec2f> uvs;
+};
 
-  w.materials.reserve(scene.materials.size());
-  for (const MaterialDesc& m : scene.materials) {
-    w.materials.push_back(build_material(m, scene));
-    const Material& built = w.materials.back();
-    ++w.stats.compiled_materials[built.describe()];
-    if (built.surface_flags() & kLobeGlossy) w.features |= kFeatureGlossy;
-    if (built.has_delta()) w.features |= kFeatureDelta;
-    if (built.oriented()) w.features |= kFeatureDielectric;
-  }
-  w.stats.materials = w.materials.size();
-  if (!w.ambient.is_black()) w.features |= kFeatureAmbient;
+// Builds a World from a description it only reads; the arrays of meshes in `taken` (by mesh index; empty: copy them
+// all) are moved into the world instead of copied.
+class WorldBuilder {
+ public:
+  WorldBuilder(const SceneDesc& scene, const WorldOptions& options, std::vector<std::optional<MeshArrays>>* taken)
+      : scene_(scene), options_(options), taken_(taken), world_(std::make_unique<World>()), w_(*world_) {}
 
-  const bool media = scene_uses_media(scene);
-  if (media) {
-    build_world_media(scene, w);
-    w.features |= kFeatureMedia;
+  std::unique_ptr<World> build() {
+    const auto start = std::chrono::steady_clock::now();
+    w_.background = scene_.background;
+    w_.ambient = scene_.ambient_light;
+    w_.unsupported = scene_.unsupported;
+    if (!w_.ambient.is_black()) w_.features |= kFeatureAmbient;
+    add_materials();
+    add_textures();
+    add_media();
+    add_meshes();
+    add_spheres();
+    add_instances();
+    const Bounds3f bounds = w_.geometry.bounds();
+    w_.scene_radius = bounds.empty() ? 1.0f : std::max(0.5f * bounds.extent(), 1e-6f);
+    add_lights();
+    for (const CameraDesc& c : scene_.cameras)
+      if (c.aperture_size > 0.0f) w_.features |= kFeatureDepthOfField;
+    if (options_.build_accelerator) w_.accel = make_accelerator(options_.accel, w_.geometry);
+    w_.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return std::move(world_);
   }
+
+ private:
+  void add_materials() {
+    w_.materials.reserve(scene_.materials.size());
+    for (const MaterialDesc& m : scene_.materials) {
+      w_.materials.push_back(build_material(m, scene_));
+      const Material& built = w_.materials.back();
+      ++w_.stats.compiled_materials[built.describe()];
+      if (built.surface_flags() & kLobeGlossy) w_.features |= kFeatureGlossy;
+      if (built.has_delta()) w_.features |= kFeatureDelta;
+      if (built.oriented()) w_.features |= kFeatureDielectric;
+    }
+    w_.stats.materials = w_.materials.size();
+  }
+
+  // Only for scenes that have textures; their OpenImageIO TextureSystem only when one is an image.
+  void add_textures() {
+    if (scene_.textures.empty()) return;
+    w_.textures = std::make_unique<SceneTextures>(scene_, options_.texture_system);
+    w_.features |= kFeatureTextures;
+  }
+
+  int bind_textures(const std::vector<int>& textures, int material, const Transform& to_world) {
+    return w_.textures && !textures.empty() ? w_.textures->bind(scene_, textures, material, to_world) : -1;
+  }
+
+  // Participating media: built only when a shape bounds one or a camera sits in one.
+  void add_media() {
+    media_ = scene_uses_media(scene_);
+    if (!media_) return;
+    build_world_media(scene_, w_);
+    w_.features |= kFeatureMedia;
+  }
+
   // The media on a shape's sides; a transition only when the scene's media are built.
-  const auto medium_interface = [&](const MediumInterfaceDesc& d, const std::string& name) {
-    if (!media) return MediumInterface{};
+  MediumInterface medium_interface(const MediumInterfaceDesc& d, const std::string& name) {
+    if (!media_) return MediumInterface{};
     for (const int m : {d.inside, d.outside})
-      if (m < -1 || m >= int(w.media.size())) throw Error(scene.source_path, name, "names a medium that does not exist");
-    if (d.inside != d.outside) ++w.stats.medium_boundaries;
+      if (m < -1 || m >= int(w_.media.size()))
+        throw Error(scene_.source_path, name, "names a medium that does not exist");
+    if (d.inside != d.outside) ++w_.stats.medium_boundaries;
     return MediumInterface{d.inside, d.outside};
-  };
+  }
+
   // Surfaces whose material only marks a boundary (pbrt's "interface") change no ray unless they bound a medium:
   // those are left out of the geometry, so they neither stop camera rays nor shadow lights.
-  const auto invisible = [&](int material, const std::optional<Rgb>& emission, const MediumInterfaceDesc& sides) {
+  bool invisible(int material, const std::optional<Rgb>& emission, const MediumInterfaceDesc& sides) {
     const bool emits = emission && !emission->is_black();
-    if (emits || material < 0 || size_t(material) >= w.materials.size() || !w.materials[size_t(material)].passes_through)
+    if (emits || material < 0 || size_t(material) >= w_.materials.size() ||
+        !w_.materials[size_t(material)].passes_through)
       return false;
-    if (media && sides.inside != sides.outside) return false;
-    ++w.stats.interface_shapes;
+    if (media_ && sides.inside != sides.outside) return false;
+    ++w_.stats.interface_shapes;
     return true;
-  };
-
-  // Textures: only for scenes that have them; their OpenImageIO TextureSystem only when one is an image.
-  if (!scene.textures.empty()) {
-    w.textures = std::make_unique<SceneTextures>(scene, options.texture_system);
-    w.features |= kFeatureTextures;
   }
-  const auto bind_textures = [&](const std::vector<int>& textures, int material, const Transform& to_world) {
-    return w.textures && !textures.empty() ? w.textures->bind(scene, textures, material, to_world) : -1;
-  };
 
-  WorldGeometry& g = w.geometry;
+  // An emitting shape's light; its index for ShapeData::light.
+  template <typename L>
+  int add_shape_light(L&& light, size_t& count, uint32_t feature) {
+    w_.lights.emplace_back(std::forward<L>(light));
+    ++count;
+    w_.features |= feature;
+    return int(w_.lights.size()) - 1;
+  }
+
   // Meshes: world-space copies for the scene, object-space prototypes for instanced bases.
-  std::vector<int> prototype_of(scene.meshes.size(), -1);
-  for (size_t i = 0; i < scene.meshes.size(); ++i) {
-    const MeshDesc& m = scene.meshes[i];
-    if (m.is_instance_base) {
-      prototype_of[i] = int(g.prototypes.size());
-      g.prototypes.push_back(TriangleMesh{with_spare_capacity(m.positions), with_spare_capacity(m.indices)});
+  void add_meshes() {
+    prototype_of_.assign(scene_.meshes.size(), -1);
+    for (size_t i = 0; i < scene_.meshes.size(); ++i) {
+      const MeshDesc& m = scene_.meshes[i];
+      if (m.is_instance_base) {
+        prototype_of_[i] = int(w_.geometry.prototypes.size());
+        w_.geometry.prototypes.push_back(TriangleMesh{with_spare_capacity(m.positions), with_spare_capacity(m.indices)});
+      }
+      MeshArrays* arrays = taken_ && (*taken_)[i] ? &*(*taken_)[i] : nullptr;
+      if (!m.visible || (!arrays && m.indices.empty())) continue;  // taken arrays are never empty
+      check_material(scene_, m.material, m.name, m.emission.has_value());
+      if (invisible(m.material, m.emission, m.media)) continue;
+      add_mesh(m, arrays);
+      if (arrays) (*taken_)[i].reset();  // frees what the world did not keep (e.g. an untextured mesh's uvs)
     }
-    if (!m.visible || m.indices.empty()) continue;
-    check_material(scene, m.material, m.name, m.emission.has_value());
-    if (invisible(m.material, m.emission, m.media)) continue;
-    // Instance bases stay in the description: their prototype copy above was taken from it.
-    MeshDesc* take = consumable && !m.is_instance_base ? &consumable->meshes[i] : nullptr;
-    const bool has_uvs = !m.uvs.empty() && m.uvs.size() == m.positions.size();  // before `take` empties m
-    TriangleMesh tm = take ? TriangleMesh{take_transformed_points(take->positions, m.to_world),
-                                          take_with_spare_capacity(take->indices)}
-                           : TriangleMesh{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
+  }
+
+  // One mesh from its description, its arrays moved from `taken` when given, else copied.
+  void add_mesh(const MeshDesc& m, MeshArrays* taken) {
+    const std::vector<Vec3f>& normals = taken ? taken->normals : m.normals;
+    const std::vector<Vec2f>& uvs = taken ? taken->uvs : m.uvs;
+    const bool has_uvs = !uvs.empty() && uvs.size() == (taken ? taken->positions : m.positions).size();
+    TriangleMesh tm = taken ? TriangleMesh{take_transformed_points(taken->positions, m.to_world),
+                                           take_with_spare_capacity(taken->indices)}
+                            : TriangleMesh{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
     ShapeData sd;
     sd.material = m.material;
     sd.media = medium_interface(m.media, m.name);
-    sd.smooth = m.smooth || !m.normals.empty();
+    sd.smooth = m.smooth || !normals.empty();
     sd.textures = bind_textures(m.textures, m.material, m.to_world);
     if (sd.textures >= 0 && has_uvs) {
-      sd.uvs = int(w.uvs.size());
-      w.uvs.push_back(take ? std::exchange(take->uvs, {}) : m.uvs);
+      sd.uvs = int(w_.uvs.size());
+      if (taken) w_.uvs.push_back(std::move(taken->uvs));
+      else w_.uvs.push_back(uvs);
     }
-    if (take) take->uvs = {};  // only textured shapes read texture coordinates
-    if (!m.normals.empty()) {
-      std::vector<Vec3f> n = take ? std::exchange(take->normals, {}) : m.normals;
+    if (!normals.empty()) {
+      std::vector<Vec3f> n;
+      if (taken) n = std::move(taken->normals);
+      else n = normals;
       for (Vec3f& v : n) {
         const Vec3f wn = m.to_world.normal(v);
         const float len = length(wn);
         v = len > 0.0f ? wn / len : Vec3f(0.0f);
       }
-      sd.normals = int(w.normals.size());
-      w.normals.push_back(std::move(n));
+      sd.normals = int(w_.normals.size());
+      w_.normals.push_back(std::move(n));
     } else if (m.smooth) {
-      sd.normals = int(w.normals.size());
-      w.normals.push_back(vertex_normals(tm));
+      sd.normals = int(w_.normals.size());
+      w_.normals.push_back(vertex_normals(tm));
     }
-    if (sd.smooth) w.features |= kFeatureSmoothNormals;
-    if (m.emission && !m.emission->is_black()) {
-      sd.light = int(w.lights.size());
-      w.lights.emplace_back(MeshLight(tm.p, tm.idx, *m.emission, m.two_sided_emission));
-      ++w.stats.mesh_lights;
-      w.features |= kFeatureMeshLights;
-    }
-    w.stats.triangles += tm.triangle_count();
-    ++w.stats.meshes;
-    g.shapes.push_back(Shape{ShapeKind::Mesh, uint32_t(g.meshes.size()), shape_motion(w, m.name, m.motion, sd.light)});
+    if (sd.smooth) w_.features |= kFeatureSmoothNormals;
+    if (m.emission && !m.emission->is_black())
+      sd.light = add_shape_light(MeshLight(tm.p, tm.idx, *m.emission, m.two_sided_emission), w_.stats.mesh_lights,
+                                 kFeatureMeshLights);
+    w_.stats.triangles += tm.triangle_count();
+    ++w_.stats.meshes;
+    WorldGeometry& g = w_.geometry;
+    g.shapes.push_back(Shape{ShapeKind::Mesh, uint32_t(g.meshes.size()), shape_motion(w_, m.name, m.motion, sd.light)});
     g.meshes.push_back(std::move(tm));
-    w.shape_data.push_back(sd);
-    w.features |= kFeatureTriangles;
+    w_.shape_data.push_back(sd);
+    w_.features |= kFeatureTriangles;
   }
-  for (const SphereDesc& s : scene.spheres) {
-    check_material(scene, s.material, s.name, s.emission.has_value());
-    if (invisible(s.material, s.emission, s.media)) continue;
-    ShapeData sd;
-    sd.material = s.material;
-    sd.media = medium_interface(s.media, s.name);
-    sd.textures = bind_textures(s.textures, s.material, s.to_world);
-    const bool emits = s.emission && !s.emission->is_black();
-    if (emits && !(s.radius > 0.0f)) {
-      w.warnings.push_back(s.name + ": zero-radius light sphere emits nothing; left out of the lights");
-    } else if (emits) {
-      sd.light = int(w.lights.size());
-      w.lights.emplace_back(SphereLight(s.center, s.radius, s.to_world, *s.emission, options.ellipsoid_pdf));
-      ++w.stats.sphere_lights;
-      w.features |= kFeatureSphereLights;
-      w.stats.cone_sampler_built = true;
-    }
-    g.shapes.push_back(Shape{ShapeKind::Sphere, uint32_t(g.spheres.size()), shape_motion(w, s.name, s.motion, sd.light)});
-    g.spheres.push_back(SphereShape{s.center, s.radius, s.to_world});
-    w.shape_data.push_back(sd);
-    w.features |= kFeatureSpheres;
-  }
-  w.stats.spheres = g.spheres.size();
-  w.stats.sphere_geometry_built = !g.spheres.empty();
-  // Object-space smooth normals for instanced prototypes, shared by all instances of one prototype.
-  std::vector<int> prototype_normals(g.prototypes.size(), -2);
-  std::vector<int> prototype_uvs(g.prototypes.size(), -1);
-  for (const InstanceDesc& inst : scene.instances) {
-    if (inst.base_mesh < 0 || size_t(inst.base_mesh) >= scene.meshes.size() || prototype_of[size_t(inst.base_mesh)] < 0)
-      throw Error(scene.source_path, inst.name, "references a mesh that is not an instance base");
-    const MeshDesc& base = scene.meshes[size_t(inst.base_mesh)];
-    const int proto = prototype_of[size_t(inst.base_mesh)];
-    ShapeData sd;
-    sd.material = inst.material >= 0 ? inst.material : base.material;
-    check_material(scene, sd.material, inst.name, false);
-    if (invisible(sd.material, std::nullopt, inst.media)) continue;
-    sd.media = medium_interface(inst.media, inst.name);
-    sd.smooth = inst.smooth.value_or(base.smooth || !base.normals.empty());
-    if (sd.smooth) {
-      int& pn = prototype_normals[size_t(proto)];
-      if (pn == -2) {
-        pn = int(w.normals.size());
-        w.normals.push_back(base.normals.empty() ? vertex_normals(g.prototypes[size_t(proto)]) : base.normals);
+
+  void add_spheres() {
+    WorldGeometry& g = w_.geometry;
+    for (const SphereDesc& s : scene_.spheres) {
+      check_material(scene_, s.material, s.name, s.emission.has_value());
+      if (invisible(s.material, s.emission, s.media)) continue;
+      ShapeData sd;
+      sd.material = s.material;
+      sd.media = medium_interface(s.media, s.name);
+      sd.textures = bind_textures(s.textures, s.material, s.to_world);
+      const bool emits = s.emission && !s.emission->is_black();
+      if (emits && !(s.radius > 0.0f)) {
+        w_.warnings.push_back(s.name + ": zero-radius light sphere emits nothing; left out of the lights");
+      } else if (emits) {
+        sd.light = add_shape_light(SphereLight(s.center, s.radius, s.to_world, *s.emission, options_.ellipsoid_pdf),
+                                   w_.stats.sphere_lights, kFeatureSphereLights);
+        w_.stats.cone_sampler_built = true;
       }
-      sd.normals = pn;
-      w.features |= kFeatureSmoothNormals;
+      g.shapes.push_back(
+          Shape{ShapeKind::Sphere, uint32_t(g.spheres.size()), shape_motion(w_, s.name, s.motion, sd.light)});
+      g.spheres.push_back(SphereShape{s.center, s.radius, s.to_world});
+      w_.shape_data.push_back(sd);
+      w_.features |= kFeatureSpheres;
     }
-    sd.textures = bind_textures(inst.textures, sd.material, inst.to_world);
-    if (sd.textures >= 0 && !base.uvs.empty() && base.uvs.size() == base.positions.size()) {
-      int& pu = prototype_uvs[size_t(proto)];
-      if (pu == -1) {
-        pu = int(w.uvs.size());
-        w.uvs.push_back(base.uvs);
+    w_.stats.spheres = g.spheres.size();
+    w_.stats.sphere_geometry_built = !g.spheres.empty();
+  }
+
+  // Object-space smooth normals and uvs of instanced prototypes, shared by all instances of one prototype.
+  void add_instances() {
+    WorldGeometry& g = w_.geometry;
+    std::vector<int> prototype_normals(g.prototypes.size(), -2);
+    std::vector<int> prototype_uvs(g.prototypes.size(), -1);
+    for (const InstanceDesc& inst : scene_.instances) {
+      if (inst.base_mesh < 0 || size_t(inst.base_mesh) >= scene_.meshes.size() ||
+          prototype_of_[size_t(inst.base_mesh)] < 0)
+        throw Error(scene_.source_path, inst.name, "references a mesh that is not an instance base");
+      const MeshDesc& base = scene_.meshes[size_t(inst.base_mesh)];
+      const int proto = prototype_of_[size_t(inst.base_mesh)];
+      ShapeData sd;
+      sd.material = inst.material >= 0 ? inst.material : base.material;
+      check_material(scene_, sd.material, inst.name, false);
+      if (invisible(sd.material, std::nullopt, inst.media)) continue;
+      sd.media = medium_interface(inst.media, inst.name);
+      sd.smooth = inst.smooth.value_or(base.smooth || !base.normals.empty());
+      if (sd.smooth) {
+        int& pn = prototype_normals[size_t(proto)];
+        if (pn == -2) {
+          pn = int(w_.normals.size());
+          w_.normals.push_back(base.normals.empty() ? vertex_normals(g.prototypes[size_t(proto)]) : base.normals);
+        }
+        sd.normals = pn;
+        w_.features |= kFeatureSmoothNormals;
       }
-      sd.uvs = pu;
+      sd.textures = bind_textures(inst.textures, sd.material, inst.to_world);
+      if (sd.textures >= 0 && !base.uvs.empty() && base.uvs.size() == base.positions.size()) {
+        int& pu = prototype_uvs[size_t(proto)];
+        if (pu == -1) {
+          pu = int(w_.uvs.size());
+          w_.uvs.push_back(base.uvs);
+        }
+        sd.uvs = pu;
+      }
+      g.shapes.push_back(
+          Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w_, inst.name, inst.motion, -1)});
+      g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
+      w_.shape_data.push_back(sd);
+      w_.stats.triangles += g.prototypes[size_t(proto)].triangle_count();
+      w_.features |= kFeatureInstances;
     }
-    g.shapes.push_back(Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w, inst.name, inst.motion, -1)});
-    g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
-    w.shape_data.push_back(sd);
-    w.stats.triangles += g.prototypes[size_t(proto)].triangle_count();
-    w.features |= kFeatureInstances;
+    w_.stats.instances = g.instances.size();
   }
-  w.stats.instances = g.instances.size();
 
-  const Bounds3f bounds = g.bounds();
-  w.scene_radius = bounds.empty() ? 1.0f : std::max(0.5f * bounds.extent(), 1e-6f);
+  // The lights that are not shapes (after the shapes: directional and infinite lights need the scene's radius), then
+  // the selector over all of them.
+  void add_lights() {
+    WorldStats& st = w_.stats;
+    for (const PointLightDesc& l : scene_.point_lights) add_light(PointLight(l.position, l.intensity), st.point_lights);
+    for (const SpotLightDesc& l : scene_.spot_lights)
+      add_light(SpotLight(l.position, l.direction, l.intensity, l.coverage_deg, l.falloff_deg,
+                          l.falloff == SpotFalloff::SmoothStep),
+                st.spot_lights);
+    for (const DirectionalLightDesc& l : scene_.directional_lights)
+      add_light(DirectionalLight(l.direction, l.radiance, w_.scene_radius), st.directional_lights);
+    if (st.point_lights + st.spot_lights + st.directional_lights > 0) w_.features |= kFeaturePointLights;
+    for (const AreaLightDesc& l : scene_.area_lights) {
+      add_light(make_area_light(l), st.area_lights);
+      w_.features |= kFeatureAreaLights;
+    }
+    for (const InfiniteLightDesc& l : scene_.infinite_lights) {
+      w_.infinite_lights.push_back(int(w_.lights.size()));
+      add_light(InfiniteLight(l.radiance, w_.scene_radius), st.infinite_lights);
+      w_.features |= kFeatureInfiniteLights;
+    }
+    for (const EnvLightDesc& l : scene_.env_lights) {
+      w_.infinite_lights.push_back(int(w_.lights.size()));
+      add_light(ImageInfiniteLight(read_environment_map(scene_, l), w_.scene_radius, options_.env_map_sampling),
+                st.environment_maps);
+      w_.features |= kFeatureInfiniteLights | kFeatureEnvironmentMap;
+    }
+    if (!w_.lights.empty()) {
+      w_.light_selector = LightSelector(w_.lights, options_.light_selection);
+      st.light_selector_built = true;
+    }
+  }
 
-  for (const PointLightDesc& l : scene.point_lights) {
-    w.lights.emplace_back(PointLight(l.position, l.intensity));
-    ++w.stats.point_lights;
+  template <typename L>
+  void add_light(L&& light, size_t& count) {
+    w_.lights.emplace_back(std::forward<L>(light));
+    ++count;
   }
-  for (const SpotLightDesc& l : scene.spot_lights) {
-    w.lights.emplace_back(SpotLight(l.position, l.direction, l.intensity, l.coverage_deg, l.falloff_deg,
-                                    l.falloff == SpotFalloff::SmoothStep));
-    ++w.stats.spot_lights;
-  }
-  for (const DirectionalLightDesc& l : scene.directional_lights) {
-    w.lights.emplace_back(DirectionalLight(l.direction, l.radiance, w.scene_radius));
-    ++w.stats.directional_lights;
-  }
-  if (w.stats.point_lights + w.stats.spot_lights + w.stats.directional_lights > 0) w.features |= kFeaturePointLights;
-  for (const AreaLightDesc& l : scene.area_lights) {
-    w.lights.emplace_back(make_area_light(l));
-    ++w.stats.area_lights;
-    w.features |= kFeatureAreaLights;
-  }
-  for (const InfiniteLightDesc& l : scene.infinite_lights) {
-    w.infinite_lights.push_back(int(w.lights.size()));
-    w.lights.emplace_back(InfiniteLight(l.radiance, w.scene_radius));
-    ++w.stats.infinite_lights;
-    w.features |= kFeatureInfiniteLights;
-  }
-  for (const EnvLightDesc& l : scene.env_lights) {
-    w.infinite_lights.push_back(int(w.lights.size()));
-    w.lights.emplace_back(ImageInfiniteLight(read_environment_map(scene, l), w.scene_radius, options.env_map_sampling));
-    ++w.stats.environment_maps;
-    w.features |= kFeatureInfiniteLights | kFeatureEnvironmentMap;
-  }
-  if (!w.lights.empty()) {
-    w.light_selector = LightSelector(w.lights, options.light_selection);
-    w.stats.light_selector_built = true;
-  }
-  for (const CameraDesc& c : scene.cameras)
-    if (c.aperture_size > 0.0f) w.features |= kFeatureDepthOfField;
 
-  if (options.build_accelerator) w.accel = make_accelerator(options.accel, g);
-  w.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return world;
+  const SceneDesc& scene_;
+  const WorldOptions& options_;
+  std::vector<std::optional<MeshArrays>>* taken_;
+  std::unique_ptr<World> world_;
+  World& w_;
+  std::vector<int> prototype_of_;  // mesh index -> index into WorldGeometry::prototypes, or -1
+  bool media_ = false;             // the scene's media are built (add_media)
+};
+
+// Moves the arrays the world keeps out of every visible mesh that is not an instance base (instances read their
+// base from the description).
+std::vector<std::optional<MeshArrays>> take_mesh_arrays(SceneDesc& scene) {
+  std::vector<std::optional<MeshArrays>> taken(scene.meshes.size());
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    MeshDesc& m = scene.meshes[i];
+    if (m.is_instance_base || !m.visible || m.indices.empty()) continue;
+    taken[i] = MeshArrays{std::exchange(m.positions, {}), std::exchange(m.indices, {}), std::exchange(m.normals, {}),
+                          std::exchange(m.uvs, {})};
+  }
+  return taken;
 }
 
 }  // namespace
 
 std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& options) {
-  return build_world_impl(scene, nullptr, options);
+  return WorldBuilder(scene, options, nullptr).build();
 }
 
 std::unique_ptr<World> build_world_taking_meshes(SceneDesc& scene, const WorldOptions& options) {
-  return build_world_impl(scene, &scene, options);
+  std::vector<std::optional<MeshArrays>> taken = take_mesh_arrays(scene);
+  return WorldBuilder(scene, options, &taken).build();
 }
 
 }  // namespace kiln

@@ -86,8 +86,9 @@ struct WorldOptions {
 
 // Throws kiln::Error on inconsistent descriptions (dangling material indices etc.).
 std::unique_ptr<World> build_world(const SceneDesc& scene, const WorldOptions& options);
-// Moves the meshes' vertex, index and normal arrays out of `scene` instead of copying them (a large mesh is then held
-// once); everything else in the description (cameras, materials, lights, mesh names) stays valid.
+// Moves the arrays (positions, indices, normals, uvs) of every visible mesh that is not an instance base out of
+// `scene` instead of copying them (a large mesh is then held once), then builds from the description as it is left;
+// everything else in it (cameras, materials, lights, mesh names, instance bases) stays valid.
 std::unique_ptr<World> build_world_taking_meshes(SceneDesc& scene, const WorldOptions& options);
 
 }  // namespace kiln

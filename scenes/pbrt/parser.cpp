@@ -294,7 +294,7 @@ class PbrtParser {
     }
     if (d == "TransformTimes") {
       read_numbers<2>(cur, line, d, false);
-      return warn(line, d, "shutter times are ignored (Kiln renders no motion blur)");
+      return warn(line, d, "shutter times are ignored (pbrt motion blur is not imported)");
     }
     if (d == "ReverseOrientation") {
       gs_.reverse_orientation = !gs_.reverse_orientation;
@@ -600,7 +600,7 @@ class PbrtParser {
   }
 
   void motion_blur(int line, const std::string& d) {
-    warn(line, d, "the transform moves during the shutter interval; Kiln renders it at the start (no motion blur)");
+    warn(line, d, "the transform moves during the shutter interval; it is imported at its start (pbrt motion blur is not imported)");
     diag_.unsupported("motion blur (pbrt ActiveTransform)");
   }
 

@@ -2,9 +2,11 @@
 #pragma once
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -26,6 +28,17 @@ inline std::string tmp_dir(const std::string& sub) {
   const std::string d = std::string(KILN_TEST_TMP) + "/" + sub;
   std::filesystem::create_directories(d);
   return d;
+}
+
+// Runs `kiln ARGS` (the binary under test) and returns its exit code and its stdout and stderr together.
+inline std::pair<int, std::string> run_kiln_command(const std::string& args) {
+  std::string out;
+  FILE* p = popen((std::string(KILN_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  if (!p) return {-1, out};
+  char buf[4096];
+  while (fgets(buf, sizeof buf, p)) out += buf;
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 // A scene with one material, material 0: a Lambertian of the given albedo (shapes, lights and cameras to be added).
@@ -130,10 +143,22 @@ inline Estimate estimate_from_sums(double sum, double sum2, double n) {
   return e;
 }
 
+// A render context for tests that call the integrators (trace) directly: the camera's, with default options and a
+// film the integrators do not write. It keeps its own copy of the settings, so a temporary may be passed.
+struct TraceContext {
+  IntegratorSettings settings;
+  RenderOptions options;
+  Film film{1, 1};
+  RenderContext ctx;
+  TraceContext(const World& w, const Camera& camera, IntegratorSettings s)
+      : settings(std::move(s)), ctx(w, camera, settings, options, film) {}
+};
+
 // Mean luminance-free (red channel) estimate over n independent camera samples through random pixels.
 inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const CameraDesc& cd, uint32_t n,
                               uint64_t seed = 7) {
   const Camera cam(cd);
+  const TraceContext tc(w, cam, s);
   RayCounters c;
   double sum = 0, sum2 = 0;
   for (uint32_t i = 0; i < n; ++i) {
@@ -143,7 +168,7 @@ inline Estimate estimate_mean(const World& w, const IntegratorSettings& s, const
     sampler.set_dimension(kFirstPathDimension);
     const Vec2f film = pixel_film_position(int(px.x * float(cam.width())), int(px.y * float(cam.height())),
                                            cam.width(), cam.height());
-    const double v = trace(w, s, ray, film, sampler, c).r;
+    const double v = trace(tc.ctx, ray, film, sampler, c).r;
     sum += v;
     sum2 += v * v;
   }
@@ -171,6 +196,7 @@ inline std::vector<Estimate> block_estimates(const World& w, const CameraDesc& c
                                              uint64_t seed, int block) {
   s.features = w.features;
   const Camera cam(cd);
+  const TraceContext tc(w, cam, s);
   const int bw = cam.width() / block, bh = cam.height() / block;
   std::vector<Estimate> out(size_t(bw * bh));
   tbb::parallel_for(0, int(out.size()), [&](int b) {
@@ -185,8 +211,8 @@ inline std::vector<Estimate> block_estimates(const World& w, const CameraDesc& c
           const Vec2f u = sampler.next_2d();
           const Ray ray = cam.generate_ray(float(px) + u.x, float(py) + u.y, sampler.next_2d());
           sampler.set_dimension(kFirstPathDimension);
-          const double v = trace(w, s, ray, pixel_film_position(px, py, cam.width(), cam.height()), sampler, c)
-                               .luminance();
+          const double v =
+              trace(tc.ctx, ray, pixel_film_position(px, py, cam.width(), cam.height()), sampler, c).luminance();
           sum += v;
           sum2 += v * v;
         }

@@ -10,6 +10,7 @@
 #include "renderer/render_util.h"
 #include "renderer/cli/converge.h"
 #include "renderer/analysis/convergence.h"
+#include "renderer/analysis/convergence_budget.h"
 #include "renderer/image_io/image_io.h"
 #include "renderer/analysis/plot_svg.h"
 
@@ -42,7 +43,7 @@ TEST(Convergence, StrategyNamesShareTheTransportRules) {
   const PathSettings base = convergence_base_settings(scene);
   EXPECT_EQ(base.max_depth, 3);
   EXPECT_FALSE(base.russian_roulette);
-  EXPECT_EQ(base.rr_min_depth, kStrategyRrMinDepth);
+  EXPECT_EQ(base.rr_min_depth, kKilnRouletteMinDepth);
   EXPECT_EQ(convergence_base_settings(SceneDesc{}).max_depth, 8);
 
   struct Want {
@@ -262,6 +263,84 @@ TEST(ConvergeCommand, WritesReferenceCsvAndPlot) {
   bad = a;
   bad.camera = "7";
   EXPECT_THROW(cmd_converge(bad), Error);
+}
+
+// ---- the budget (renderer/analysis/convergence_budget.h) ----
+
+// Why: `--budget 60` on the course's diffuse Cornell box ran 13 minutes, its 4096-spp reference at ~0.19 s per spp
+// outside the budget. The default reference now takes as many spp as its measured cost lets fit half the budget,
+// so reference plus strategies stay within it.
+TEST(ConvergeBudget, DefaultReferenceFitsItsShare) {
+  struct Case {
+    double budget, cost;  // seconds; seconds per spp
+    uint32_t pilot_spp;
+  };
+  for (const Case& c : {Case{60, 0.19, 8}, Case{60, 0.1, 16}, Case{5, 0.001, 64}, Case{600, 0.19, 64}}) {
+    SCOPED_TRACE(testing::Message() << "budget " << c.budget << " s, " << c.cost << " s/spp");
+    const double share = kReferenceShare * c.budget, pilot_seconds = c.cost * c.pilot_spp;
+    const ReferencePlan plan = plan_reference(share, c.pilot_spp, pilot_seconds, c.cost, kDefaultReferenceMaxSpp, 0);
+    EXPECT_LE(plan.spp * c.cost, share);
+    EXPECT_NEAR(plan.estimated_seconds, plan.spp * c.cost, 1e-9);
+    EXPECT_TRUE(plan.fits);
+    EXPECT_LE(plan.spp, kDefaultReferenceMaxSpp);
+    // The share is used, not wasted: one more sample would pass the planning margin, unless the cap stopped it.
+    if (plan.spp < kDefaultReferenceMaxSpp) {
+      EXPECT_GT((plan.spp + 1) * c.cost, kPlanningMargin * share - 1e-6);
+    }
+    EXPECT_LE(plan.estimated_seconds + strategies_budget(c.budget, plan.estimated_seconds), c.budget + 1e-9);
+  }
+  // The case: 142 spp in ~27 s instead of 4096 in ~780 s.
+  const ReferencePlan cornell = plan_reference(30, 8, 8 * 0.19, 0.19, kDefaultReferenceMaxSpp, 0);
+  EXPECT_EQ(cornell.spp, 8u + uint32_t((0.9 * 30 - 8 * 0.19) / 0.19));
+  // A cheap scene stops at the cap; a pilot that already spent the share is the reference.
+  EXPECT_EQ(plan_reference(30, 64, 0.064, 0.001, kDefaultReferenceMaxSpp, 0).spp, kDefaultReferenceMaxSpp);
+  const ReferencePlan spent = plan_reference(30, 64, 40, 0.6, kDefaultReferenceMaxSpp, 0);
+  EXPECT_EQ(spent.spp, 64u);
+  EXPECT_FALSE(spent.fits);
+}
+
+// Why: an explicit --reference-spp is honoured, but its cost is estimated (and announced) before it starts, and
+// the strategies keep their half of the budget.
+TEST(ConvergeBudget, ExplicitReferenceSppIsEstimated) {
+  const ReferencePlan p = plan_reference(30, 16, 16 * 0.19, 0.19, 4096, 4096);
+  EXPECT_EQ(p.spp, 4096u);
+  EXPECT_NEAR(p.estimated_seconds, 4096 * 0.19, 1e-6);
+  EXPECT_FALSE(p.fits);
+  EXPECT_TRUE(plan_reference(30, 16, 16 * 0.01, 0.01, 256, 256).fits);
+  EXPECT_DOUBLE_EQ(strategies_budget(60, p.estimated_seconds), 30.0);
+  EXPECT_DOUBLE_EQ(strategies_budget(60, 20.0), 40.0);
+  EXPECT_DOUBLE_EQ(strategies_budget(60, 0.0), 60.0);  // a reference given as a file
+}
+
+// Why: the user hears the reference's spp and estimated time before it renders, and gets the spp announced.
+TEST(ConvergeBudget, CommandAnnouncesTheReferencePlan) {
+  const std::string dir = tmp_dir("converge_budget"), scene = std::string(KILN_SOURCE_DIR) + "/scenes/default.xml";
+  const std::string common = " --resolution-scale 0.05 --strategies mis --runs 1 --budget 2";
+  auto [code, out] = run_kiln_command("converge " + scene + common + " -o " + dir + "/auto");
+  ASSERT_EQ(code, 0) << out;
+  const std::string announced = "rendering one with mis at ";
+  const size_t at = out.find(announced);
+  ASSERT_NE(at, std::string::npos) << out;
+  const uint32_t spp = uint32_t(std::stoul(out.substr(at + announced.size())));
+  EXPECT_NE(out.find("within 50% of the --budget"), std::string::npos) << out;
+  EXPECT_NE(out.find(": about "), std::string::npos) << out;
+  EXPECT_EQ(read_exr(dir + "/auto/reference.exr").find("kiln:spp"), std::to_string(spp));
+  EXPECT_GE(spp, 1u);
+  EXPECT_LE(spp, kDefaultReferenceMaxSpp);
+
+  std::tie(code, out) = run_kiln_command("converge " + scene + common + " --reference-spp 24 -o " + dir + "/explicit");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find(announced + "24 spp"), std::string::npos) << out;
+  EXPECT_NE(out.find("as --reference-spp asks"), std::string::npos) << out;
+  EXPECT_EQ(read_exr(dir + "/explicit/reference.exr").find("kiln:spp"), "24");
+
+  // A budget below one spp per run: the overrun is announced before the strategies start.
+  std::tie(code, out) = run_kiln_command("converge " + scene +
+                                         " --resolution-scale 0.05 --strategies mis,nee,cosine --runs 3 --budget 0.001"
+                                         " -o " + dir + "/tiny");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("need at least 1 spp each"), std::string::npos) << out;
+  EXPECT_LT(out.find("need at least 1 spp each"), out.find("kiln: converge: mis ")) << out;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "renderer/render_util.h"
+#include "renderer/image_io/image_io.h"
 
 namespace kiln::test {
 namespace {
@@ -108,14 +109,16 @@ TEST_F(AdaptiveScene, BitIdenticalForThreadsTileOrderAndWaves) {
 }
 
 // Why: pixels stop only when their estimate is below 5 * threshold, at a scheduled count; the others take every
-// sample. And the estimate means what it says: against a 2048-spp reference, the pixels that stopped have a median
-// true error (the same formula with the reference in place of the even-sample mean) below 5 * threshold.
+// sample. And the estimate means what it says, in the image the render outputs (Film::mean, each pixel divided by
+// its own sample count): against a 2048-spp reference, the pixels that stopped have a median true error (the same
+// formula with the reference image in place of the even-sample mean) below 5 * threshold.
 TEST_F(AdaptiveScene, StopsOnlyBelowTheThresholdAndReachesIt) {
   constexpr float kThreshold = 0.02f;
   constexpr uint32_t kMaxSpp = 1024;
   const AdaptiveRender a = render(kThreshold, kMaxSpp, 0, false, {{0, kMaxSpp}});
   const AdaptiveRender ref = render(0.0f, 2048, 0, false, {{0, 2048}}, 1000);
   const AdaptiveSampling rule{kThreshold, 16};
+  const Image image = a.film.mean(), reference = ref.film.mean();
   std::vector<double> true_error;
   size_t stopped = 0;
   for (int y = 0; y < kSize; ++y)
@@ -128,10 +131,9 @@ TEST_F(AdaptiveScene, StopsOnlyBelowTheThresholdAndReachesIt) {
       ++stopped;
       EXPECT_TRUE(rule.check_due(p.n)) << "stopped at an unscheduled count " << p.n;
       EXPECT_LT(AdaptiveSampling::error(p), kAdaptiveThresholdScale * kThreshold) << x << "," << y;
-      const PixelSum& q = ref.film.at(x, y);
-      const double n = p.n, m = q.n;
-      const double diff = std::abs(p.r / n - q.r / m) + std::abs(p.g / n - q.g / m) + std::abs(p.b / n - q.b / m);
-      true_error.push_back(diff / (1e-4 + std::sqrt((q.r + q.g + q.b) / m)));
+      const Rgb v = image.at(x, y), r = reference.at(x, y);
+      const double diff = std::abs(v.r - r.r) + std::abs(v.g - r.g) + std::abs(v.b - r.b);
+      true_error.push_back(diff / (1e-4 + std::sqrt(double(r.r) + r.g + r.b)));
     }
   ASSERT_GT(stopped, size_t(kSize * kSize / 4)) << "too few pixels stopped to judge the estimate";
   std::sort(true_error.begin(), true_error.end());
@@ -140,6 +142,23 @@ TEST_F(AdaptiveScene, StopsOnlyBelowTheThresholdAndReachesIt) {
               "%.4f)\n", double(kThreshold), stopped, kSize * kSize, median, true_error[true_error.size() * 9 / 10],
               kAdaptiveThresholdScale * kThreshold);
   EXPECT_LT(median, kAdaptiveThresholdScale * kThreshold);
+  // The image as a whole keeps the reference's scale (pixels that stopped early are not dimmed by the samples they
+  // skipped): mean luminance within 4.5 standard errors of the reference's (the pixels' variances from the film).
+  const auto image_mean = [](const Image& img, const Film& film) {
+    const Image variance = film.variance_of_mean();
+    double sum = 0, var = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        sum += img.at(x, y).luminance();
+        var += variance.at(x, y).r;
+      }
+    const double n = double(kSize * kSize);
+    return std::pair{sum / n, std::sqrt(var) / n};
+  };
+  const auto [m, se] = image_mean(image, a.film);
+  const auto [m_ref, se_ref] = image_mean(reference, ref.film);
+  std::printf("image mean luminance %.5f +- %.5f, reference %.5f +- %.5f\n", m, se, m_ref, se_ref);
+  EXPECT_NEAR(m, m_ref, 4.5 * std::hypot(se, se_ref));
 }
 
 // Why: a render continuing a film whose pixels do not hold samples 0..first-1 cannot decide adaptively.
@@ -147,21 +166,11 @@ TEST_F(AdaptiveScene, RefusesToContinueFromTheMiddleOfTheSamples) {
   EXPECT_THROW(render(0.05f, 64, 1, false, {{8, 64}}), Error);
 }
 
-std::pair<int, std::string> run_kiln(const std::string& args) {
-  std::string out;
-  FILE* p = popen((std::string(KILN_BINARY) + " " + args + " 2>&1").c_str(), "r");
-  if (!p) return {-1, out};
-  char buf[4096];
-  while (fgets(buf, sizeof buf, p)) out += buf;
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
 // Why: the CLI option reaches the scheduler and reports what it did; bad combinations are bad input (exit 2).
 TEST(Adaptive, CommandLine) {
   const std::string dir = tmp_dir("adaptive_cli"), scene = std::string(KILN_SOURCE_DIR) + "/scenes/default.xml";
   std::filesystem::remove_all(dir + "/bad");
-  auto [code, out] = run_kiln("render " + scene + " -q --spp 64 --crop 150,200,150,200 --adaptive 0.1 "
+  auto [code, out] = run_kiln_command("render " + scene + " -q --spp 64 --crop 150,200,150,200 --adaptive 0.1 "
                               "--adaptive-min-spp 8 -o " + dir + "/out --stats " + dir + "/stats.json");
   ASSERT_EQ(code, 0) << out;
   const auto stats = nlohmann::json::parse(std::ifstream(dir + "/stats.json"));
@@ -169,11 +178,24 @@ TEST(Adaptive, CommandLine) {
   EXPECT_LT(cam["mean_spp"].get<double>(), 64.0);
   EXPECT_GT(cam["adaptive"]["converged_fraction"].get<double>(), 0.0);
   EXPECT_EQ(cam["adaptive"]["min_spp"].get<int>(), 8);
-  std::tie(code, out) = run_kiln("render " + scene + " -q --spp 64 --adaptive 0.1 --spp-range 0:32 -o " + dir + "/bad");
+  // The EXR has the scale of a render that took every sample (adaptive pixels divided by their own counts): mean
+  // luminance over the crop within 5% (the noise of that mean is ~0.5%; a pixel divided by 64 instead of its count
+  // would be dimmed by the mean spp's shortfall).
+  std::tie(code, out) = run_kiln_command("render " + scene + " -q --spp 64 --crop 150,200,150,200 -o " + dir + "/full");
+  ASSERT_EQ(code, 0) << out;
+  const auto mean_luminance = [](const std::string& path) {
+    double sum = 0;
+    const Image img = read_exr(path).rgb;
+    for (const Rgb& p : img.pixels()) sum += p.luminance();
+    return sum / double(img.pixels().size());
+  };
+  const double adaptive = mean_luminance(dir + "/out/default.exr"), full = mean_luminance(dir + "/full/default.exr");
+  EXPECT_NEAR(adaptive / full, 1.0, 0.05) << "adaptive " << adaptive << ", every sample " << full;
+  std::tie(code, out) = run_kiln_command("render " + scene + " -q --spp 64 --adaptive 0.1 --spp-range 0:32 -o " + dir + "/bad");
   EXPECT_EQ(code, kExitBadInput) << out;
   EXPECT_NE(out.find("--adaptive"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir + "/bad"));
-  std::tie(code, out) = run_kiln("render " + scene + " -q --spp 4 --filter lanczos -o " + dir + "/bad");
+  std::tie(code, out) = run_kiln_command("render " + scene + " -q --spp 4 --filter lanczos -o " + dir + "/bad");
   EXPECT_EQ(code, kExitBadInput) << out;
   EXPECT_NE(out.find("--filter"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir + "/bad"));

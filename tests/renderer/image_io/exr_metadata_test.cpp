@@ -6,6 +6,7 @@
 
 #include "renderer/render_util.h"
 #include "renderer/image_io/image_io.h"
+#include "renderer/render/scene_fingerprint.h"
 
 namespace kiln::test {
 namespace {
@@ -24,14 +25,17 @@ TEST(ExrMetadata, EveryKilnKeyChannelNamesAndTheCropDataWindow) {
   const std::string dir = tmp_dir("exr_metadata");
   ASSERT_EQ(render(default_scene() + " -o " + dir + " --spp 3 --seed 42 --crop 100,300,50,250 --aov depth"), 0);
   const ExrFile f = read_exr(dir + "/default.exr");
+  SceneFingerprint fingerprint;
+  load_scene_fingerprinted(default_scene(), {}, fingerprint);
   const std::pair<const char*, std::string> exact[] = {
       {"kiln:version", KILN_VERSION}, {"kiln:scene", default_scene()}, {"kiln:camera", "1"},
       {"kiln:spp", "3"},              {"kiln:spp_first", "0"},         {"kiln:spp_last", "3"},
-      {"kiln:spp_total", "3"},        {"kiln:scene_files", "1"},       {"kiln:seed", "42"},
+      {"kiln:spp_total", "3"},        {"kiln:scene_files", scene_files_metadata(fingerprint)},       {"kiln:seed", "42"},
       {"kiln:rules", "Kiln's rules"},         {"kiln:incomplete", "false"}};
   for (const auto& [key, value] : exact) EXPECT_EQ(f.find(key), value) << key;
   // Keys whose values are computed: present and well formed.
-  EXPECT_EQ(f.find("kiln:scene_hash").size(), 16u) << f.find("kiln:scene_hash");
+  EXPECT_EQ(f.find("kiln:scene_hash"), fingerprint.hash);
+  EXPECT_EQ(f.find("kiln:scene_files"), fingerprint.files.at(0).hash + " default.xml");
   EXPECT_NE(f.find("kiln:integrator").find("path"), std::string::npos) << f.find("kiln:integrator");
   EXPECT_NE(f.find("kiln:render_options").find("physical_lights=0"), std::string::npos) << f.find("kiln:render_options");
   EXPECT_GT(std::stod(f.find("kiln:render_seconds")), 0.0);

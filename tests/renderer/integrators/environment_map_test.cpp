@@ -116,7 +116,9 @@ TEST(EnvironmentMap, CameraRaysThatMissSeeTheMap) {
     Sampler sampler(1, 0, 0, 0);
     RayCounters c;
     const Ray r{{0, 0, 0}, normalize(Vec3f(0.3f, 0.4f, -1.0f))};
-    EXPECT_EQ(trace(*world, settings, r, {0.5f, 0.5f}, sampler, c), light.radiance(r.d)) << settings.describe();
+    const Camera camera(s.cameras[0]);
+    const TraceContext tc(*world, camera, settings);
+    EXPECT_EQ(trace(tc.ctx, r, {0.5f, 0.5f}, sampler, c), light.radiance(r.d)) << settings.describe();
   }
 }
 

@@ -246,6 +246,43 @@ TEST(Furnace, UnitSphereAndEllipsoidGiveOne) {
 }
 
 // The test must be able to fail: a deliberately wrong answer (one bounce fewer) is rejected.
+// Kiln's roulette ends paths as its rule says, not only without bias: with roulette switched off an unbounded path
+// runs kMaxPathVertices bounces, whose sum of a^k equals the unbounded one to float precision, so the radiance
+// checks above cannot tell. Cosine sampling of a Lambertian of
+// albedo a multiplies the throughput by exactly a, so the first three bounces always continue, the fourth survives
+// with probability a^4 (throughput a^4, then reset to 1 by the compensation) and every later one with probability a:
+// 3 + a^4 / (1 - a) bounce rays per camera sample on average.
+TEST(Furnace, KilnRouletteEndsPathsAtItsSurvivalRate) {
+  constexpr double kAlbedo = 0.5;
+  constexpr uint32_t kSamples = 100000;
+  const SceneDesc scene = furnace_box(float(kAlbedo), Rgb(1.0f));
+  const auto world = build_world(scene, {});
+  PathSettings s;
+  s.directions = DirectionSampling::Cosine;
+  s.nee = false;
+  s.mis = false;
+  s.russian_roulette = true;
+  s.rr_min_depth = 3;
+  s.max_depth = -1;
+  const Camera cam(scene.cameras[0]);
+  const TraceContext tc(*world, cam, s);
+  RayCounters c;
+  double sum = 0, sum2 = 0;
+  for (uint32_t i = 0; i < kSamples; ++i) {
+    Sampler sampler(11, i % 8, i / 8 % 8, i);
+    const Ray ray = cam.generate_ray(4.0f, 4.0f, sampler.next_2d());
+    sampler.set_dimension(kFirstPathDimension);
+    const uint64_t before = c.indirect;
+    (void)trace(tc.ctx, ray, {0.5f, 0.5f}, sampler, c);
+    const double bounces = double(c.indirect - before);
+    sum += bounces;
+    sum2 += bounces * bounces;
+  }
+  const Estimate e = estimate_from_sums(sum, sum2, kSamples);
+  const double want = 3.0 + std::pow(kAlbedo, 4) / (1.0 - kAlbedo);
+  EXPECT_NEAR(e.mean, want, 4.5 * e.stderr_) << "bounce rays per sample " << e.mean << " +- " << e.stderr_;
+}
+
 TEST(Furnace, DetectsAMissingBounce) {
   const SceneDesc scene = furnace_box(0.5f, Rgb(1.0f));
   const auto world = build_world(scene, {});

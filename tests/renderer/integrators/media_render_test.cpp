@@ -55,6 +55,7 @@ RgbEstimate estimate(const MediaScene& s, const IntegratorSettings& is, uint32_t
   const Camera cam(s.desc.cameras.at(0));
   if (x1 < 0) x1 = float(cam.width());
   if (y1 < 0) y1 = float(cam.height());
+  const TraceContext tc(*s.world, cam, is);
   RayCounters c;
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
   RgbEstimate e;
@@ -64,7 +65,7 @@ RgbEstimate estimate(const MediaScene& s, const IntegratorSettings& is, uint32_t
     const float x = x0 + px.x * (x1 - x0), y = y0 + px.y * (y1 - y0);
     const Ray ray = cam.generate_ray(x, y, sampler.next_2d());
     sampler.set_dimension(kFirstPathDimension);
-    const Rgb L = trace(*s.world, is, ray, pixel_film_position(int(x), int(y), cam.width(), cam.height()), sampler, c);
+    const Rgb L = trace(tc.ctx, ray, pixel_film_position(int(x), int(y), cam.width(), cam.height()), sampler, c);
     if (!L.is_finite()) {
       ++e.nonfinite;
       continue;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <functional>
 
 #include "renderer/render_util.h"
 
@@ -160,6 +161,129 @@ TEST(MotionBlur, MeshSmearMatchesTheAnalyticCoverage) {
 TEST(MotionBlur, InstanceSmearMatchesTheAnalyticCoverage) {
   expect_analytic_smear(Kind::Instance, AccelKind::Embree, "embree");
   expect_analytic_smear(Kind::Instance, AccelKind::Bvh, "bvh");
+}
+
+// ---- Kiln's path tracer: the camera sample's time must reach every ray of the path ----------------------------------
+
+// Fraction of the shutter during which the line o + s u meets the sphere of radius kRadius centred at c0 + t motion
+// (|(c0 + t m - o) x u|^2 <= R^2 |u|^2, a quadratic in t).
+double line_coverage(Vec3f o, Vec3f u, Vec3f c0, Vec3f motion) {
+  const Vec3f p = cross(c0 - o, u), q = cross(motion, u);
+  const double a = dot(q, q), b = 2.0 * dot(p, q), c = dot(p, p) - double(kRadius) * kRadius * dot(u, u);
+  const double disc = b * b - 4 * a * c;
+  if (disc <= 0) return 0;
+  return overlap((-b - std::sqrt(disc)) / (2 * a), (-b + std::sqrt(disc)) / (2 * a));
+}
+
+constexpr float kMirrorDepth = kDepth / 4;  // a mirror facing the camera at z = -kMirrorDepth
+constexpr Vec3f kLight{0, 3, -kDepth + 3};  // the point light over the floor
+constexpr Vec3f kOccluderStart{kStartX, 1.5f, -kDepth + 1.5f};  // halfway between the floor's centre and the light
+constexpr float kFloorAlbedo = 0.5f;
+constexpr Rgb kLightIntensity{40.0f};
+
+// A unit-facing quad z = z0 of half-size h facing +z, with material m.
+MeshDesc facing_quad(const std::string& name, float z0, float h, int m) {
+  MeshDesc q;
+  q.name = name;
+  q.positions = {{-h, -h, z0}, {h, -h, z0}, {h, h, z0}, {-h, h, z0}};
+  q.indices = {0, 1, 2, 0, 2, 3};
+  q.material = m;
+  return q;
+}
+
+// Materials: 0 the floor's Lambertian, 1 black, 2 a perfect mirror. Emitters do not move (README, motion blur), so
+// the moving ball is always a black occluder.
+SceneDesc kiln_motion_scene(bool mirror) {
+  SceneDesc s = lambertian_scene(kFloorAlbedo, "motion_pt.test");
+  s.rules = SceneRules::Kiln;
+  s.cameras.push_back(moving_scene(Kind::Sphere, kMotion).cameras[0]);
+  MaterialDesc black;
+  black.brdf = 0;
+  s.materials.push_back(black);
+  SphereDesc ball;
+  ball.name = "occluder";
+  ball.radius = kRadius;
+  ball.motion = kMotion;
+  ball.material = 1;
+  if (mirror) {
+    // A mirror facing the camera, a white sky (a constant infinite light) behind the camera, and the ball between
+    // them, where its mirror image is the ball of moving_scene: the image is 1 minus the analytic coverage, found by
+    // bounce rays only.
+    MaterialDesc m;
+    m.type = MaterialType::Mirror;
+    m.mirror = Rgb(1.0f);
+    s.materials.push_back(m);
+    s.meshes.push_back(facing_quad("mirror", -kMirrorDepth, 5, 2));
+    s.infinite_lights.push_back({Rgb(1.0f)});
+    ball.center = Vec3f(kStartX, 0, -2 * kMirrorDepth + kDepth);
+  } else {
+    // A floor lit by a point light; the ball, out of the camera's view, casts a moving shadow onto it.
+    s.meshes.push_back(facing_quad("floor", -kDepth, 20, 0));
+    s.point_lights.push_back({kLight, kLightIntensity});
+    ball.center = kOccluderStart;
+  }
+  s.spheres.push_back(ball);
+  return s;
+}
+
+// A pixel's expected value, and what it would be if the moving ball did not cover it (the binomial error's scale).
+struct Expected {
+  double value = 0, uncovered = 0;
+};
+
+// The floor's radiance toward the camera, albedo / pi * I cos / d^2, times the light's visibility averaged over the
+// shutter, averaged over the pixel (box filter) by a midpoint quadrature.
+Expected shadowed_floor(const Camera& cam, int px, int py) {
+  Expected e;
+  for (int i = 0; i < kQuadrature; ++i)
+    for (int j = 0; j < kQuadrature; ++j) {
+      const Ray r = cam.generate_ray(float(px) + (float(i) + 0.5f) / kQuadrature,
+                                     float(py) + (float(j) + 0.5f) / kQuadrature, Vec2f{0.5f, 0.5f});
+      const Vec3f p = r.o + r.d * ((-kDepth - r.o.z) / r.d.z);
+      const Vec3f to_light = kLight - p;
+      const double d2 = dot(to_light, to_light), cos_floor = to_light.z / std::sqrt(d2);
+      const double lit = kFloorAlbedo / kPi * kLightIntensity.g * cos_floor / d2;
+      e.value += lit * (1.0 - line_coverage(p, to_light, kOccluderStart, kMotion));
+      e.uncovered += lit;
+    }
+  e.value /= kQuadrature * kQuadrature;
+  e.uncovered /= kQuadrature * kQuadrature;
+  return e;
+}
+
+// Pixels against the expectation within 5 standard errors of a sample that is either 0 or the pixel's uncovered
+// value (binomial), and enough partly covered pixels to show a smear.
+void expect_smear_under_kiln(const SceneDesc& s, const std::function<Expected(const Camera&, int, int)>& expected) {
+  const auto w = build_world(s, {});
+  ASSERT_TRUE(w->features & kFeatureMotionBlur);
+  const IntegratorSettings settings = scene_settings(s.cameras[0], s, w->features);
+  ASSERT_NE(settings.describe().find("Kiln path tracer"), std::string::npos) << settings.describe();
+  const Image img = render_image(*w, s.cameras[0], settings, kSpp, 23);
+  const Camera cam(s.cameras[0]);
+  int partial = 0;
+  for (int y = 1; y < 3; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const Expected e = expected(cam, x, y);
+      const double c = e.value / e.uncovered;
+      const double se = e.uncovered * std::sqrt(std::max(c * (1 - c), 1.0 / kSpp) / kSpp);
+      EXPECT_NEAR(img.at(x, y).g, e.value, 5 * se + 2e-3 * e.uncovered) << "pixel " << x << "," << y;
+      partial += c > 0.05 && c < 0.95;
+    }
+  EXPECT_GT(partial, 20) << "the smear spans many partly covered pixels";
+}
+
+// A bounce ray (here off a mirror) keeps the camera sample's time: the moving ball seen in the mirror against the sky
+// is the analytic smear. A bounce ray at time 0 would show it sharp, where it stands at the shutter's opening.
+TEST(MotionBlur, KilnPathTracerBounceRaysKeepTheSampleTime) {
+  expect_smear_under_kiln(kiln_motion_scene(true), [](const Camera& cam, int x, int y) {
+    return Expected{1.0 - pixel_coverage(Kind::Sphere, cam, x, y, kMotion), 1.0};
+  });
+}
+
+// A shadow ray of next event estimation keeps the camera sample's time: a ball moving between a point light and a
+// floor casts the time-averaged shadow. A shadow ray at time 0 would cast it sharp.
+TEST(MotionBlur, KilnPathTracerShadowRaysKeepTheSampleTime) {
+  expect_smear_under_kiln(kiln_motion_scene(false), shadowed_floor);
 }
 
 bool bit_identical(const Image& a, const Image& b) {

@@ -13,6 +13,7 @@
 #include "renderer/image_io/image_io.h"
 #include "renderer/render/merge.h"
 #include "renderer/render/scene_fingerprint.h"
+#include "support/shared_data.h"
 
 namespace kiln::test {
 namespace {
@@ -37,7 +38,7 @@ Metadata part_metadata(const PartSpec& p) {
                 {"kiln:spp_last", std::to_string(p.last)},
                 {"kiln:spp_total", "8"},
                 {"kiln:scene_hash", "0123456789abcdef"},
-                {"kiln:scene_files", "2"},
+                {"kiln:scene_files", "00000000000000aa scene.xml\n00000000000000bb textures/earth.jpg"},
                 {"kiln:seed", "0"},
                 {"kiln:integrator", "path tracing: brdf+nee+mis, max depth 8"},
                 {"kiln:render_options", "clamp=0.000000 physical_lights=0 subdivide=-1"},
@@ -93,6 +94,19 @@ TEST(MergeChecks, RefusesPartsOfAnotherFrame) {
     const std::string msg = merge_error({a, b});
     EXPECT_TRUE(contains(msg, b) && contains(msg, a) && contains(msg, key) && contains(msg, "differs")) << key << ": " << msg;
   }
+}
+
+// A part of another scene names the first file whose hash differs, from the parts' kiln:scene_files.
+TEST(MergeChecks, NamesTheFirstSceneFileThatDiffers) {
+  const std::string a = write_part("file_a.exr", {.first = 0, .last = 4});
+  const std::string b = write_part(
+      "file_b.exr", {.first = 4, .last = 8,
+                     .overrides = {{"kiln:scene_hash", "fedcba9876543210"},
+                                   {"kiln:scene_files", "00000000000000aa scene.xml\n00000000000000cc textures/earth.jpg"}}});
+  const std::string msg = merge_error({a, b});
+  EXPECT_TRUE(contains(msg, b + ": scene") && contains(msg, "differs from " + a) &&
+              contains(msg, "first scene file that differs: textures/earth.jpg (hash 00000000000000cc vs 00000000000000bb)"))
+      << msg;
 }
 
 TEST(MergeChecks, RefusesAnotherResolution) {
@@ -169,8 +183,9 @@ TEST(MergeChecks, ReportsMissingSampleRanges) {
   EXPECT_TRUE(merge_parts({s0, s1, s2, s3}).complete());
 }
 
-int run_kiln(const std::string& args, std::string& output) {
-  FILE* p = popen((std::string(KILN_BINARY) + " " + args + " 2>&1").c_str(), "r");
+// Runs `kiln ARGS` (or, with kiln = false, the command line ARGS) and collects stdout and stderr.
+int run_kiln(const std::string& args, std::string& output, bool kiln = true) {
+  FILE* p = popen(((kiln ? std::string(KILN_BINARY) + " " : std::string()) + args + " 2>&1").c_str(), "r");
   if (!p) return -1;
   std::array<char, 4096> buf{};
   while (fgets(buf.data(), int(buf.size()), p)) output += buf.data();
@@ -225,10 +240,132 @@ TEST(SceneFingerprint, CoversReferencedFilesNotPaths) {
   load_scene_fingerprinted(dir + "/a/scene.xml", {}, fa);
   load_scene_fingerprinted(dir + "/b/scene.xml", {}, fb);
   load_scene_fingerprinted(dir + "/c/scene.xml", {}, fc);
-  EXPECT_EQ(fa.files, 2u);
+  ASSERT_EQ(fa.files.size(), 2u);
+  EXPECT_EQ(fa.files[0].name, "scene.xml");
+  EXPECT_EQ(fa.files[1].name, "killeroo/killeroo.ply");
   EXPECT_EQ(fa.hash.size(), 16u);
   EXPECT_EQ(fa.hash, fb.hash) << "the same files at another path";
   EXPECT_NE(fa.hash, fc.hash) << "a changed referenced mesh";
+  EXPECT_EQ(first_file_difference(fc.files, fa.files).value_or(""),
+            "killeroo/killeroo.ply (hash " + fc.files[1].hash + " vs " + fa.files[1].hash + ")");
+  EXPECT_FALSE(first_file_difference(fa.files, fb.files));
+  // The metadata form reads back as written.
+  const auto back = parse_scene_files_metadata(scene_files_metadata(fa));
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[1].name, fa.files[1].name);
+  EXPECT_EQ(back[1].hash, fa.files[1].hash);
+  EXPECT_TRUE(parse_scene_files_metadata("2").empty()) << "an older kiln's file count";
+}
+
+// Files the loader does not read itself (SceneDesc::external_files: texture images of both XML forms, the background
+// image, environment maps) follow the files it read, in the loader's order, once each; a changed byte in any of
+// them changes the identity and is named.
+TEST(SceneFingerprint, CoversTextureImagesAndEnvironmentMaps) {
+  const std::string dir = tmp_dir("fingerprint_external");
+  const auto write = [&](const std::string& name, const std::string& bytes) {
+    fs::create_directories(fs::path(dir + "/" + name).parent_path());
+    std::ofstream(dir + "/" + name, std::ios::binary) << bytes;
+  };
+  // The loader does not decode images: any bytes stand in for them here.
+  for (const char* f : {"textures/sky.jpg", "textures/earth.jpg", "textures/bump.png", "env/pisa.exr"}) write(f, f);
+  write("scene.xml", R"(<Scene>
+  <BackgroundTexture>textures/sky.jpg</BackgroundTexture>
+  <Cameras><Camera id="1"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>
+    <NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance><ImageResolution>8 8</ImageResolution>
+    <ImageName>out.png</ImageName></Camera></Cameras>
+  <Lights><SphericalDirectionalLight id="1"><ImageId>7</ImageId></SphericalDirectionalLight></Lights>
+  <Materials><Material id="1"><DiffuseReflectance>1 1 1</DiffuseReflectance></Material></Materials>
+  <Textures>
+    <Images><Image id="5">textures/bump.png</Image><Image id="7">env/pisa.exr</Image></Images>
+    <Texture id="1"><ImageName>textures/earth.jpg</ImageName></Texture>
+    <Texture id="2"><ImageName>textures/earth.jpg</ImageName><DecalMode>blend_kd</DecalMode></Texture>
+    <TextureMap id="3" type="image"><ImageId>5</ImageId><DecalMode>bump_normal</DecalMode></TextureMap>
+  </Textures>
+  <VertexData>0 0 -2 1 0 -2 0 1 -2</VertexData>
+  <Objects><Mesh id="1"><Material>1</Material><Textures>1 3</Textures><Faces>1 2 3</Faces></Mesh></Objects>
+</Scene>)");
+  SceneFingerprint before;
+  load_scene_fingerprinted(dir + "/scene.xml", {}, before);
+  std::vector<std::string> names;
+  for (const FingerprintedFile& f : before.files) names.push_back(f.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"scene.xml", "textures/sky.jpg", "textures/earth.jpg", "textures/bump.png",
+                                             "env/pisa.exr"}));
+  for (const char* f : {"textures/sky.jpg", "textures/earth.jpg", "textures/bump.png", "env/pisa.exr"}) {
+    SCOPED_TRACE(f);
+    write(f, std::string(f) + " changed");
+    SceneFingerprint after;
+    load_scene_fingerprinted(dir + "/scene.xml", {}, after);
+    EXPECT_NE(after.hash, before.hash);
+    EXPECT_TRUE(contains(first_file_difference(after.files, before.files).value_or(""), std::string(f) + " (hash"));
+    write(f, f);
+  }
+  SceneFingerprint again;
+  load_scene_fingerprinted(dir + "/scene.xml", {}, again);
+  EXPECT_EQ(again.hash, before.hash);
+}
+
+// The CENG795 scene hw4_2019/sphere_texture_replace_bilinear.xml split into two sample ranges, its earth.jpg
+// inverted between them: `kiln merge` refuses the parts (exit 2, no output), naming both and the texture. With the
+// texture restored, the same parts merge.
+class SceneIdentity : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string shared = shared_dir() + "/scenes/ceng795/regression/hw4_2019";
+    KILN_NEED_SHARED_PATH(shared + "/sphere_texture_replace_bilinear.xml");
+    dir_ = tmp_dir("scene_identity");
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ + "/scene/textures");
+    fs::copy_file(shared + "/sphere_texture_replace_bilinear.xml", scene());
+    fs::copy_file(shared + "/textures/earth.jpg", earth());
+    fs::permissions(earth(), fs::perms::owner_write, fs::perm_options::add);
+  }
+  std::string scene() const { return dir_ + "/scene/sphere_texture_replace_bilinear.xml"; }
+  std::string earth() const { return dir_ + "/scene/textures/earth.jpg"; }
+  // Renders samples `range` of an 8-spp frame, cropped around the textured sphere; returns the part's path.
+  std::string render_part(const std::string& range, const std::string& out) const {
+    std::string log;
+    EXPECT_EQ(run_kiln("render " + scene() + " -q --spp 8 --spp-range " + range + " --crop 370,430,370,430 -o " +
+                           dir_ + "/" + out, log), 0) << log;
+    return dir_ + "/" + out + "/sphere_texture_replace_bilinear.exr";
+  }
+  std::string dir_;
+};
+
+TEST_F(SceneIdentity, MergeRefusesPartsRenderedWithAnotherTexture) {
+  const std::string original = dir_ + "/earth_original.jpg";
+  fs::copy_file(earth(), original);
+  const std::string a = render_part("0:4", "part_a");
+  std::string log;
+  ASSERT_EQ(run_kiln("oiiotool " + earth() + " --invert -o " + earth(), log, false), 0)
+      << "oiiotool (openimageio-tools, .ci/install-deps.sh) inverts the texture: " << log;
+  const std::string b = render_part("4:8", "part_b");
+  EXPECT_FALSE(read_exr(a).rgb.pixels() == read_exr(b).rgb.pixels()) << "the inverted texture shows";
+  const std::string out = dir_ + "/merged.exr";
+  log.clear();
+  EXPECT_EQ(run_kiln("merge " + a + " " + b + " -o " + out, log), 2) << log;
+  EXPECT_TRUE(contains(log, b + ": scene (hash of its files) differs from " + a)) << log;
+  EXPECT_TRUE(contains(log, "first scene file that differs: textures/earth.jpg (hash ")) << log;
+  EXPECT_FALSE(fs::exists(out));
+
+  fs::copy_file(original, earth(), fs::copy_options::overwrite_existing);
+  const std::string b2 = render_part("4:8", "part_b2");
+  log.clear();
+  EXPECT_EQ(run_kiln("merge " + a + " " + b2 + " -o " + out, log), 0) << log;
+  EXPECT_TRUE(fs::exists(out));
+}
+
+// `kiln info` prints the identity and every file it covers: the scene file and its texture.
+TEST_F(SceneIdentity, InfoListsTheFilesItCovers) {
+  std::string log;
+  ASSERT_EQ(run_kiln("info " + scene(), log), 0) << log;
+  SceneFingerprint f;
+  load_scene_fingerprinted(scene(), {}, f);
+  EXPECT_TRUE(contains(log, "identity: " + f.hash + " (2 files, ")) << log;
+  ASSERT_EQ(f.files.size(), 2u);
+  for (const FingerprintedFile& file : f.files)
+    EXPECT_TRUE(contains(log, file.hash) && contains(log, "  " + file.name + "\n")) << file.name << "\n" << log;
+  EXPECT_EQ(f.files[1].name, "textures/earth.jpg");
+  EXPECT_EQ(f.files[1].bytes, fs::file_size(earth()));
 }
 
 }  // namespace

@@ -124,6 +124,43 @@ TEST(Production, AovVarianceIsNonNegativeAndShrinksWithSamples) {
               mean_variance[0], mean_variance[1], mean_variance[1] / mean_variance[0]);
 }
 
+// Why: the variance layer is the variance of the pixel mean's luminance, in the image's units: over 16 renders
+// with different seeds, the pixels' means spread by as much as the layer says (the ratio of the two, averaged over a
+// 40 x 40 crop, is 1 within the estimate's noise; the sample variance instead of the mean's would be 8 times too
+// large at 8 spp, one divided by n once more 8 times too small).
+TEST(Production, AovVarianceIsTheSpreadOfThePixelMeanAcrossSeeds) {
+  const std::string dir = tmp_dir("aov_variance_seeds");
+  constexpr int kSeeds = 16;
+  std::vector<std::vector<double>> means;  // [pixel][seed], luminance
+  double aov_sum = 0;
+  size_t aov_count = 0;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    const std::string out = dir + "/seed" + std::to_string(seed);
+    ASSERT_EQ(run({"render", default_scene(), "-o", out, "-q", "--spp", "8", "--seed", std::to_string(seed), "--aov",
+                   "variance", "--crop", "150,190,150,190"}),
+              0);
+    const ExrFile f = read_exr(out + "/default.exr");
+    means.resize(f.rgb.pixels().size());
+    for (size_t i = 0; i < f.rgb.pixels().size(); ++i) means[i].push_back(f.rgb.pixels()[i].luminance());
+    for (float v : layer(f, "Variance.R").data) {
+      aov_sum += v;
+      ++aov_count;
+    }
+  }
+  double spread_sum = 0;
+  for (const std::vector<double>& m : means) {
+    double mean = 0, ss = 0;
+    for (double v : m) mean += v / kSeeds;
+    for (double v : m) ss += (v - mean) * (v - mean);
+    spread_sum += ss / (kSeeds - 1);
+  }
+  const double aov_mean = aov_sum / double(aov_count), spread = spread_sum / double(means.size());
+  std::printf("variance of the pixel mean: layer %.4g, across %d seeds %.4g (ratio %.3f)\n", aov_mean, kSeeds, spread,
+              aov_mean / spread);
+  EXPECT_GT(aov_mean / spread, 0.7);
+  EXPECT_LT(aov_mean / spread, 1.4);
+}
+
 // Starts `kiln render scene -o out --spp 100000 extra...` with stderr to log and returns once it has begun
 // rendering (it reports the camera on stderr after installing its signal handlers), or after 60 s; -1 when it
 // could not be started.

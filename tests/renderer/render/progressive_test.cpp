@@ -1,5 +1,6 @@
 // Progressive rendering (renderer/render/progressive.h): the doubling wave schedule, equality with a one-shot render of
-// the same samples, error reports against an exact reference, the time limit and cancellation.
+// the same samples, the time limit and cancellation; its error against an exact reference after every wave
+// (renderer/analysis/error_curve.h).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -10,6 +11,7 @@
 #include "core/error.h"
 #include "renderer/render_util.h"
 #include "renderer/analysis/convergence.h"
+#include "renderer/analysis/error_curve.h"
 #include "renderer/render/progressive.h"
 
 namespace kiln::test {
@@ -83,7 +85,6 @@ TEST(Progressive, WavesMatchAOneShotRenderBitForBit) {
     EXPECT_EQ(seen, (std::vector<uint32_t>{1, 2, 4, 8, 12}));
     EXPECT_EQ(res.spp, 12u);
     EXPECT_FALSE(res.stopped_by_time_limit);
-    EXPECT_FALSE(res.final_error.has_value());
     ASSERT_EQ(res.waves.size(), 5u);
     for (size_t i = 1; i < res.waves.size(); ++i) EXPECT_GE(res.waves[i].seconds, res.waves[i - 1].seconds);
 
@@ -107,17 +108,15 @@ TEST(Progressive, ErrorFallsFasterThanOneOverSamples) {
   const Furnace f(32);
   const Camera cam(f.scene.cameras[0]);
   const Image exact = f.exact();
-  ProgressiveOptions po;
-  po.reference = &exact;
   Film film(cam.width(), cam.height());
-  const ProgressiveResult res = render_progressive(*f.world, cam, f.settings, RenderOptions{}, 256, po, film);
+  const ErrorCurve res = render_error_curve(*f.world, cam, f.settings, RenderOptions{}, 256, exact, {}, film);
+  ASSERT_EQ(res.render.waves.size(), 9u);
   ASSERT_EQ(res.waves.size(), 9u);
   std::vector<double> spp, mse;
-  for (const WaveReport& w : res.waves) {
-    ASSERT_TRUE(w.error.has_value());
-    EXPECT_NEAR(w.error->rmse, std::sqrt(w.error->mse), 1e-12);
-    spp.push_back(w.spp);
-    mse.push_back(w.error->mse);
+  for (const MeasuredWave& w : res.waves) {
+    EXPECT_NEAR(w.error.rmse, std::sqrt(w.error.mse), 1e-12);
+    spp.push_back(w.wave.spp);
+    mse.push_back(w.error.mse);
   }
   const double slope = loglog_slope(spp, mse);
   EXPECT_LT(slope, -1.1);
@@ -125,10 +124,9 @@ TEST(Progressive, ErrorFallsFasterThanOneOverSamples) {
   // Every wave lowers the error, and MSE x spp (the per-sample variance for independent samples) only shrinks.
   for (size_t i = 1; i < mse.size(); ++i) EXPECT_LT(mse[i], mse[i - 1]) << "wave " << i;
   EXPECT_LT(mse.back() * spp.back(), mse.front() * spp.front());
-  ASSERT_TRUE(res.final_error.has_value());
-  EXPECT_EQ(res.final_error->mse, mse.back());
+  EXPECT_EQ(res.final_error.mse, mse.back());
   // The reported error is the film's.
-  EXPECT_NEAR(error_stats(film.mean(), exact).rel_mse, res.final_error->rel_mse, 1e-15);
+  EXPECT_NEAR(error_stats(film.mean(), exact).rel_mse, res.final_error.rel_mse, 1e-15);
 }
 
 TEST(Progressive, TimeLimitStopsBeforeAnOverrunAndKeepsOneSample) {
@@ -230,18 +228,15 @@ TEST(Progressive, RejectsAReferenceOfAnotherSize) {
   const Furnace f(16);
   const Camera cam(f.scene.cameras[0]);
   const Image wrong(8, 16);
-  ProgressiveOptions po;
-  po.reference = &wrong;
   Film film(cam.width(), cam.height());
-  EXPECT_THROW(render_progressive(*f.world, cam, f.settings, RenderOptions{}, 4, po, film), Error);
+  EXPECT_THROW(render_error_curve(*f.world, cam, f.settings, RenderOptions{}, 4, wrong, {}, film), Error);
 }
 
 TEST(Progressive, CsvLines) {
   EXPECT_EQ(wave_csv_header(), "spp,seconds,mse,relmse,rmse\n");
-  WaveReport w;
-  w.spp = 16;
-  w.seconds = 1.5;
-  EXPECT_EQ(wave_csv_line(w), "16,1.5,,,\n");
+  MeasuredWave w;
+  w.wave.spp = 16;
+  w.wave.seconds = 1.5;
   w.error = ErrorStats{0.25, 0.5, 0.125};
   EXPECT_EQ(wave_csv_line(w), "16,1.5,0.25,0.125,0.5\n");
 }

@@ -8,6 +8,7 @@
 #include "renderer/render_util.h"
 #include "renderer/world/camera.h"
 #include "renderer/image_io/image_io.h"
+#include "renderer/world/hit_textures.h"
 #include "renderer/world/interaction.h"
 #include "renderer/texture/footprint.h"
 #include "renderer/texture/scene_textures.h"

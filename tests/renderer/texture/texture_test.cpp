@@ -181,20 +181,46 @@ TEST(BumpMap, LinearRampTiltsByTheExpectedAngle) {
   }
 }
 
-TEST(NormalMap, FlatTexelKeepsTheNormalAndATiltedOneTurnsIt) {
-  // (0.5, 0.5, 1) encodes the unperturbed normal; (1, 0.5, 0.5) a normal along dp/du.
+// Height h = c x + 2 c y (texel column x, row y; t and so v run down the image): the normal tilts against the unit
+// tangent along dp/du by c and against the unit bitangent on dp/dv's side by 2c, per unit of BumpFactor:
+// n' = normalize(n - k (c t + 2c b)). With dp/dv flipped, b flips and the v tilt turns the other way.
+TEST(BumpMap, RampAlongBothAxesTiltsAgainstTangentAndBitangent) {
+  const float c = 0.01f, k = 20.0f;
   const std::string path =
-      write_test_exr("normal.exr", 2, 1, [](int x, int) { return x == 0 ? Rgb(0.5f, 0.5f, 1.0f) : Rgb(1.0f, 0.5f, 0.5f); });
+      write_test_exr("ramp_uv.exr", 32, 16, [&](int x, int y) { return Rgb(c * float(x) + 2.0f * c * float(y)); });
+  TextureDesc d = image_texture(path, TextureFilter::Bilinear);
+  d.bump = true;
+  d.bump_factor = k;
+  const SceneDesc s = scene_with_texture(d);
+  const SceneTextures tex(s, {});
+  const Vec3f n(0, 0, 1), dpdu(4, 0, 0);
+  for (const float v_sign : {1.0f, -1.0f}) {
+    const Vec3f dpdv(0, 3 * v_sign, 0);
+    const Vec3f b = tex.bumped_normal(tex.textures()[0], n, centre(13, 7, 32, 16), {}, dpdu, dpdv);
+    const Vec3f expected = normalize(Vec3f(-k * c, -2 * k * c * v_sign, 1));
+    EXPECT_NEAR(angle_between(b, expected), 0.0f, 1e-4f)
+        << "dp/dv sign " << v_sign << ": got " << b.x << " " << b.y << " " << b.z;
+  }
+}
+
+// Texel c encodes the tangent-space normal 2c - 1 (x along the unit tangent t from dp/du, y along n x t, z along n):
+// a flat texel keeps n, tilted ones turn it towards t and towards n x t by the encoded amounts. Along the tangent
+// exactly (90 degrees) the result is clamped back to n (a normal cannot leave the surface's side).
+TEST(NormalMap, TexelsTurnTheNormalByTheirEncodedTangentSpaceVector) {
+  const Rgb texels[] = {Rgb(0.5f, 0.5f, 1.0f), Rgb(0.75f, 0.5f, 0.9f), Rgb(0.5f, 0.25f, 0.9f), Rgb(1.0f, 0.5f, 0.5f)};
+  const std::string path = write_test_exr("normal.exr", 4, 1, [&](int x, int) { return texels[x]; });
   TextureDesc d = image_texture(path, TextureFilter::Nearest);
   d.decal = DecalMode::ReplaceNormal;
   const SceneDesc s = scene_with_texture(d);
   const SceneTextures tex(s, {});
   const Vec3f n = normalize(Vec3f(0, 1, 1));
-  const Vec3f flat = tex.mapped_normal(tex.textures()[0], n, centre(0, 0, 2, 1), {}, {1, 0, 0});
-  EXPECT_NEAR(angle_between(flat, n), 0.0f, 1e-3f);
-  // Along the tangent exactly: 90 degrees is clamped back to n (a normal cannot leave the surface's side).
-  const Vec3f side = tex.mapped_normal(tex.textures()[0], n, centre(1, 0, 2, 1), {}, {1, 0, 0});
-  EXPECT_EQ(side, n);
+  const Vec3f dpdu(1, 0.4f, -0.4f);  // not perpendicular to n: the tangent is its projection
+  const Vec3f t = normalize(dpdu - n * dot(dpdu, n)), b = cross(n, t);
+  const Vec3f expected[] = {n, normalize(t * 0.5f + n * 0.8f), normalize(b * -0.5f + n * 0.8f), n};
+  for (int x = 0; x < 4; ++x) {
+    const Vec3f m = tex.mapped_normal(tex.textures()[0], n, centre(x, 0, 4, 1), {}, dpdu);
+    EXPECT_NEAR(angle_between(m, expected[x]), 0.0f, 1e-3f) << "texel " << x << ": " << m.x << " " << m.y << " " << m.z;
+  }
 }
 
 // ---- a constant texture equals the untextured material -------------------------------------------------------------

@@ -111,5 +111,50 @@ TEST(Camera, DepthOfFieldKeepsTheFocusPlaneSharpAndBlursByTheCircleOfConfusion) 
   EXPECT_EQ(length(pinhole.generate_ray(3, 7, {0, 1}).o), 0.0f);
 }
 
+// Why: the render must take its rays through the lens, not only the camera: the image of a sharp edge out of focus
+// (the background, 1, left of x = 0; a black quad right of it, at depth 2 with the focus at 5) is blurred over the
+// circle of confusion, 1 x 3 / 5 = 0.6 units there, about 5 pixels. The expected pixel is the share of its rays that
+// pass left of the edge, over a grid of film positions and lens points through Camera::generate_ray (whose thin-lens
+// geometry the test above checks); a render that dropped the lens sample would show a sharp edge.
+TEST(Camera, RenderedEdgeOutOfFocusIsBlurredByTheLens) {
+  constexpr float kDepth = 2.0f;
+  constexpr int kWidth = 32, kHeight = 2, kGrid = 64;
+  constexpr uint32_t kSpp = 1024;
+  SceneDesc s = lambertian_scene(0.0f);
+  s.background = Rgb(1.0f);
+  MeshDesc quad;
+  quad.name = "right half";
+  quad.positions = {{0, -50, -kDepth}, {50, -50, -kDepth}, {50, 50, -kDepth}, {0, 50, -kDepth}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  quad.material = 0;
+  s.meshes.push_back(quad);
+  CameraDesc cd;
+  cd.id = "1";
+  cd.near_plane = {-1, 1, -1.0f / 16, 1.0f / 16};
+  cd.width = kWidth;
+  cd.height = kHeight;
+  cd.aperture_size = 1.0f;
+  cd.focus_distance = 5.0f;
+  s.cameras.push_back(cd);
+  const auto w = build_world(s, {});
+  const Image img = render_image(*w, cd, scene_settings(cd, s, w->features), kSpp, 5);
+  const Camera cam(cd);
+  int blurred = 0;
+  for (int x = 0; x < kWidth; ++x) {
+    double bright = 0;  // the edge is vertical: only the film's and the lens' x matter
+    for (int i = 0; i < kGrid; ++i)
+      for (int k = 0; k < kGrid; ++k) {
+        const Ray r = cam.generate_ray(float(x) + (float(i) + 0.5f) / kGrid, 1.0f, {(float(k) + 0.5f) / kGrid, 0.5f});
+        bright += at_depth(r, kDepth).x < 0.0f;
+      }
+    const double expected = bright / (kGrid * kGrid);
+    const double se = std::sqrt(std::max(expected * (1 - expected), 1.0 / kSpp) / kSpp);
+    for (int y = 0; y < kHeight; ++y)
+      EXPECT_NEAR(img.at(x, y).g, expected, 5 * se + 0.01) << "pixel " << x << "," << y;
+    blurred += expected > 0.05 && expected < 0.95;
+  }
+  EXPECT_GE(blurred, 4) << "the edge spreads over the circle of confusion";
+}
+
 }  // namespace
 }  // namespace kiln::test
