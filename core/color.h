@@ -34,4 +34,9 @@ constexpr Rgb operator*(float s, Rgb c) { return c * s; }
 inline Rgb exp(Rgb c) { return {std::exp(c.r), std::exp(c.g), std::exp(c.b)}; }
 inline Rgb pow(Rgb c, float e) { return {std::pow(c.r, e), std::pow(c.g, e), std::pow(c.b, e)}; }
 
+// The sRGB transfer curve (IEC 61966-2-1) undone: an encoded value in [0, 1] to linear.
+inline float srgb_to_linear(float v) {
+  return v <= 0.04045f ? v * (1.0f / 12.92f) : std::pow((v + 0.055f) * (1.0f / 1.055f), 2.4f);
+}
+
 }  // namespace kiln

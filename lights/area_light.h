@@ -34,6 +34,7 @@ class AreaLight {
   Vec3f corner() const { return corner_; }
   Vec3f edge1() const { return edge1_; }
   Vec3f edge2() const { return edge2_; }
+  Rgb radiance() const { return radiance_; }
 
  private:
   Vec3f corner_, edge1_, edge2_, normal_;

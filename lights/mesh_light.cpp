@@ -41,9 +41,17 @@ std::optional<LightSample> MeshLight::sample_li(const LightQuery& q, Vec2f u) co
   if (!(total_area_ > 0.0f)) return std::nullopt;
   float pmf = 0.0f, u_tri = 0.0f;
   const size_t i = dist_.sample(u.x, &pmf, &u_tri);
-  const Tri& t = tris_[i];
+  return sample_on(q, tris_[i], pmf, {u_tri, u.y});
+}
+
+std::optional<LightSample> MeshLight::sample_triangle_li(const LightQuery& q, size_t i, Vec2f u) const {
+  if (i >= tris_.size()) return std::nullopt;
+  return sample_on(q, tris_[i], 1.0f, u);
+}
+
+std::optional<LightSample> MeshLight::sample_on(const LightQuery& q, const Tri& t, float pmf, Vec2f u) const {
   if (!(pmf > 0.0f) || !(t.area > 0.0f)) return std::nullopt;
-  const Vec2f b = sample_uniform_triangle({u_tri, u.y});
+  const Vec2f b = sample_uniform_triangle(u);
   const Vec3f p = t.p0 * (1.0f - b.x - b.y) + t.p1 * b.x + t.p2 * b.y;
   const Vec3f to_light = p - q.p;
   const float d2 = length_squared(to_light);
@@ -64,8 +72,15 @@ std::optional<LightSample> MeshLight::sample_li(const LightQuery& q, Vec2f u) co
 
 float MeshLight::pdf_li(const LightQuery& q, Vec3f p_light, Vec3f, uint32_t prim) const {
   if (prim >= tris_.size()) return 0.0f;
-  const Tri& t = tris_[prim];
-  const float pmf = dist_.pmf(prim);
+  return pdf_on(q, p_light, tris_[prim], dist_.pmf(prim));
+}
+
+float MeshLight::pdf_triangle_li(const LightQuery& q, Vec3f p_light, size_t i) const {
+  if (i >= tris_.size()) return 0.0f;
+  return pdf_on(q, p_light, tris_[i], 1.0f);
+}
+
+float MeshLight::pdf_on(const LightQuery& q, Vec3f p_light, const Tri& t, float pmf) const {
   if (!(pmf > 0.0f) || !(t.area > 0.0f)) return 0.0f;
   const Vec3f to_light = p_light - q.p;
   const float d2 = length_squared(to_light);

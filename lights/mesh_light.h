@@ -8,6 +8,7 @@
 // A sample picks a triangle with probability proportional to its area (zero-area triangles are never picked),
 // then a uniform point on it; the area pdf 1/A_total becomes the solid-angle pdf d^2 / (|cos theta_l| A_total).
 #pragma once
+#include <array>
 #include <span>
 #include <vector>
 
@@ -25,6 +26,9 @@ class MeshLight {
   std::optional<LightSample> sample_li(const LightQuery& q, Vec2f u) const;
   // Density of sample_li at p_light on triangle prim; 0 when q is behind that triangle's emitting side.
   float pdf_li(const LightQuery& q, Vec3f p_light, Vec3f n_light, uint32_t prim) const;
+  // The same for triangle i alone (a light hierarchy chose it): a uniform point on it, pdf d^2 / (|cos| A_i).
+  std::optional<LightSample> sample_triangle_li(const LightQuery& q, size_t i, Vec2f u) const;
+  float pdf_triangle_li(const LightQuery& q, Vec3f p_light, size_t i) const;
   // n must be the triangle's geometric normal in winding order (not face-forwarded).
   Rgb emitted(Vec3f n, Vec3f w) const {
     const float c = dot(n, w);
@@ -39,8 +43,17 @@ class MeshLight {
   float triangle_area(size_t i) const { return tris_[i].area; }
   // Probability that a sample lands on triangle i.
   float triangle_pmf(size_t i) const { return dist_.pmf(i); }
+  // Triangle i's corners and unit geometric normal (zero when degenerate).
+  std::array<Vec3f, 3> triangle(size_t i) const { return {tris_[i].p0, tris_[i].p1, tris_[i].p2}; }
+  Vec3f triangle_normal(size_t i) const { return tris_[i].n; }
+  Rgb radiance() const { return radiance_; }
 
  private:
+  struct Tri;
+  // A uniform point on t (barycentric sample u) seen from q, with solid-angle pdf (pmf / area) d^2 / cos.
+  std::optional<LightSample> sample_on(const LightQuery& q, const Tri& t, float pmf, Vec2f u) const;
+  float pdf_on(const LightQuery& q, Vec3f p_light, const Tri& t, float pmf) const;
+
   struct Tri {
     Vec3f p0, p1, p2;
     Vec3f n;  // unit geometric normal; zero for degenerate triangles

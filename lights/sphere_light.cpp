@@ -30,6 +30,7 @@ struct D3 {
   Vec3f to_float() const { return {float(x), float(y), float(z)}; }
   std::array<double, 3> arr() const { return {x, y, z}; }
 };
+double sqr_d(double x) { return x * x; }
 double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 double length(D3 a) { return std::sqrt(dot(a, a)); }
 D3 normalize(D3 a) { return a * (1.0 / length(a)); }
@@ -125,6 +126,16 @@ SphereLight::Local SphereLight::to_local(Vec3f q) const {
 }
 
 bool SphereLight::contains(Vec3f p) const { return to_local(p).inside; }
+
+// The ellipsoid M (center + r x) + t, |x| = 1, reaches r |row i of M| either side of its center along world axis i.
+Bounds3f SphereLight::world_bounds() const {
+  const D3 c = apply_point(to_world_, D3(center_));
+  double half[3];
+  for (size_t i = 0; i < 3; ++i)
+    half[i] = double(radius_) * std::sqrt(sqr_d(to_world_[4 * i]) + sqr_d(to_world_[4 * i + 1]) + sqr_d(to_world_[4 * i + 2]));
+  const D3 h(half[0], half[1], half[2]);
+  return Bounds3f((c - h).to_float(), (c + h).to_float());
+}
 
 // The map w_obj -> w_world = M w_obj / |M w_obj| has solid-angle Jacobian |det M| / |M w_obj|^3, so
 // p_world = p_obj |M w_obj|^3 / |det M| = p_obj / (|det M| |M^-1 w_world|^3) for unit w_world. This equals

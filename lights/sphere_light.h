@@ -9,6 +9,7 @@
 #pragma once
 #include <array>
 
+#include "core/bounds.h"
 #include "core/transform.h"
 #include "lights/light_sample.h"
 
@@ -44,6 +45,9 @@ class SphereLight {
   float surface_area() const { return surface_area_; }
   // True when q is inside the surface or on it (within kOnSurfaceTolerance), where sample_li samples area.
   bool contains(Vec3f p) const;
+  // World-space bounds of the (transformed) surface: exact for ellipsoids.
+  Bounds3f world_bounds() const;
+  Rgb radiance() const { return radiance_; }
 
  private:
   using Affine = std::array<double, 12>;  // row-major 3x4 [linear | translation]

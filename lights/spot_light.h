@@ -28,6 +28,10 @@ class SpotLight {
   float falloff(Vec3f w) const;
   Vec3f position() const { return position_; }
   Vec3f direction() const { return direction_; }
+  Rgb intensity() const { return intensity_; }
+  // Cosines of the half-angles of the coverage cone (nothing outside) and of the full-intensity cone.
+  float cos_coverage() const { return cos_coverage_; }
+  float cos_falloff() const { return cos_falloff_; }
 
  private:
   Vec3f position_, direction_;

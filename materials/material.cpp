@@ -166,10 +166,13 @@ std::string name_of(const TorranceSparrow&) { return "torrance-sparrow"; }
 std::string name_of(const RoughConductor&) { return "rough-conductor"; }
 std::string name_of(const RoughDielectric&) { return "rough-dielectric"; }
 std::string name_of(const CoatedDiffuse&) { return "coated-diffuse"; }
+std::string name_of(const CoatedConductor&) { return "coated-conductor"; }
+std::string name_of(const DiffuseTransmission&) { return "diffuse-transmission"; }
 std::string name_of(const NoDelta&) { return ""; }
 std::string name_of(const Mirror&) { return "mirror"; }
 std::string name_of(const Dielectric&) { return "dielectric"; }
 std::string name_of(const Conductor&) { return "conductor"; }
+std::string name_of(const ThinDielectric&) { return "thin-dielectric"; }
 
 }  // namespace
 

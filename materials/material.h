@@ -12,24 +12,27 @@
 
 #include "materials/bsdf_sample.h"
 #include "materials/blinn_phong.h"
+#include "materials/coated_conductor.h"
 #include "materials/coated_diffuse.h"
 #include "materials/conductor.h"
 #include "materials/dielectric.h"
+#include "materials/diffuse_transmission.h"
 #include "materials/lambert.h"
 #include "materials/mirror.h"
 #include "materials/perturb.h"
 #include "materials/phong.h"
 #include "materials/rough_conductor.h"
 #include "materials/rough_dielectric.h"
+#include "materials/thin_dielectric.h"
 #include "materials/torrance_sparrow.h"
 
 namespace kiln {
 
 struct NoSurface {};
 using SurfaceBrdf = std::variant<NoSurface, Lambert, Phong, BlinnPhong, TorranceSparrow, RoughConductor,
-                                 RoughDielectric, CoatedDiffuse>;
+                                 RoughDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission>;
 struct NoDelta {};
-using DeltaBsdf = std::variant<NoDelta, Mirror, Dielectric, Conductor>;
+using DeltaBsdf = std::variant<NoDelta, Mirror, Dielectric, Conductor, ThinDielectric>;
 
 // One deterministic branch of a delta lobe for the Whitted-style tracer (reflection and refraction).
 struct DeltaBranch {
@@ -57,8 +60,9 @@ struct Material {
   // The frame's +z must be the geometric outside (delta Dielectric, or a surface BSDF that handles both sides):
   // integrators must not flip such a frame towards wo.
   bool oriented() const;
-  // The non-delta part transmits (RoughDielectric): next event estimation must also try light directions on the
-  // other side of the surface, and a transmitted sample crosses into the inside.
+  // The non-delta part transmits (RoughDielectric, DiffuseTransmission): next event estimation must also try
+  // light directions on the other side of the surface, and a transmitted sample crosses to the other side (into
+  // the inside for an oriented material; a thin sheet has no inside and changes no medium).
   bool has_surface_transmission() const { return (surface_flags() & kLobeTransmission) != 0; }
 
   // Non-delta part only (the delta part, and delta lobes of the surface part such as a smooth coat's mirror

@@ -13,7 +13,7 @@ std::optional<Vec3f> half_vector(Vec3f wo, Vec3f wi) {
 }  // namespace
 
 Rgb RoughConductor::eval(Vec3f wo, Vec3f wi) const {
-  if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return Rgb(0.0f);
+  if (!(wo.z > 0.0f) || !(wi.z > 0.0f) || is_specular()) return Rgb(0.0f);
   const std::optional<Vec3f> wm = half_vector(wo, wi);
   if (!wm) return Rgb(0.0f);
   const Rgb F = fresnel_conductor(std::abs(dot(wo, *wm)), ior);
@@ -21,7 +21,7 @@ Rgb RoughConductor::eval(Vec3f wo, Vec3f wi) const {
 }
 
 float RoughConductor::pdf(Vec3f wo, Vec3f wi) const {
-  if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
+  if (!(wo.z > 0.0f) || !(wi.z > 0.0f) || is_specular()) return 0.0f;
   const std::optional<Vec3f> wm = half_vector(wo, wi);
   if (!wm) return 0.0f;
   const float cos_om = dot(wo, *wm);
@@ -31,6 +31,10 @@ float RoughConductor::pdf(Vec3f wo, Vec3f wi) const {
 
 std::optional<BsdfSample> RoughConductor::sample(Vec3f wo, float /*uc*/, Vec2f u) const {
   if (!(wo.z > 0.0f)) return std::nullopt;
+  if (is_specular()) {
+    const Vec3f wi = reflect_z(wo);
+    return BsdfSample{fresnel_conductor(wo.z, ior) / wi.z, wi, 1.0f, kLobeReflection | kLobeSpecular};
+  }
   const Vec3f wm = distribution.sample_visible(wo, u);
   const Vec3f wi = reflect(wo, wm);
   if (!(wi.z > 0.0f)) return std::nullopt;

@@ -1,8 +1,10 @@
-// Rough conductor (pbrt-v4 "conductor" with roughness > 0): Trowbridge-Reitz microfacet reflection with the exact
-// per-channel Fresnel reflectance of a complex index of refraction.
+// Rough conductor (pbrt-v4's ConductorBxDF): Trowbridge-Reitz microfacet reflection with the exact per-channel
+// Fresnel reflectance of a complex index of refraction.
 //
 // Parameters:
-//   distribution  Trowbridge-Reitz alphas (not effectively smooth: a smooth pbrt conductor is the delta Conductor)
+//   distribution  Trowbridge-Reitz alphas. Effectively smooth alphas make it a delta mirror: sample() returns the
+//                 reflection with f = F / |cos(theta_i)| and pdf 1 (kLobeSpecular), eval and pdf are 0. A smooth
+//                 pbrt "conductor" material is the delta Conductor; the smooth form serves CoatedConductor's base.
 //   ior           eta + i k per RGB channel, relative to the outside. pbrt's "reflectance" form r is eta = 1,
 //                 k = 2 sqrt(r) / sqrt(1 - r), whose normal-incidence reflectance is exactly r.
 //
@@ -27,7 +29,8 @@ struct RoughConductor {
   Rgb eval(Vec3f wo, Vec3f wi) const;
   float pdf(Vec3f wo, Vec3f wi) const;
   std::optional<BsdfSample> sample(Vec3f wo, float uc, Vec2f u) const;
-  uint32_t flags() const { return kLobeReflection | kLobeGlossy; }
+  bool is_specular() const { return distribution.effectively_smooth(); }
+  uint32_t flags() const { return kLobeReflection | (is_specular() ? kLobeSpecular : kLobeGlossy); }
   // Normal-incidence Fresnel reflectance (channel average).
   float albedo_estimate() const { return fresnel_conductor(1.0f, ior).average(); }
 };

@@ -95,6 +95,12 @@ const char* pbrt_kind_name(PbrtMaterialKind k) {
       return "dielectric";
     case PbrtMaterialKind::CoatedDiffuse:
       return "coateddiffuse";
+    case PbrtMaterialKind::CoatedConductor:
+      return "coatedconductor";
+    case PbrtMaterialKind::DiffuseTransmission:
+      return "diffusetransmission";
+    case PbrtMaterialKind::ThinDielectric:
+      return "thindielectric";
     case PbrtMaterialKind::Interface:
       return "interface";
   }
@@ -121,10 +127,27 @@ class PbrtContext {
     if (!std::isfinite(v) || !(v > 0.0f)) fail(std::string(name) + " must be a positive number, got " + std::to_string(v));
     return v;
   }
-  TrowbridgeReitz distribution() const {
-    const float u = non_negative(d_.uroughness, "uroughness"), v = non_negative(d_.vroughness, "vroughness");
+  TrowbridgeReitz distribution() const { return distribution(d_.uroughness, d_.vroughness, "uroughness", "vroughness"); }
+  TrowbridgeReitz distribution(float u, float v, const char* u_name, const char* v_name) const {
+    u = non_negative(u, u_name);
+    v = non_negative(v, v_name);
     if (!d_.remap_roughness) return TrowbridgeReitz(u, v);
     return TrowbridgeReitz(TrowbridgeReitz::roughness_to_alpha(u), TrowbridgeReitz::roughness_to_alpha(v));
+  }
+  // The coat (interface index eta, the material's roughness) and the medium under it, checked: the random walk's
+  // limits, g in (-1, 1), thickness and albedo.
+  LayerStack layers(float eta) const {
+    check_layers();
+    return LayerStack{RoughDielectric{eta, distribution()}, non_negative(d_.thickness, "thickness"),
+                      albedo_like(d_.albedo, "albedo"), d_.g, d_.max_depth, d_.n_samples};
+  }
+  void check_layers() const {
+    if (!std::isfinite(d_.g) || !(std::abs(d_.g) < 1.0f))
+      fail("g must lie strictly between -1 and 1, got " + std::to_string(d_.g));
+    if (d_.max_depth < 0 || d_.max_depth > kMaxPbrtLayeredDepth)
+      fail("maxdepth must be in [0, " + std::to_string(kMaxPbrtLayeredDepth) + "], got " + std::to_string(d_.max_depth));
+    if (d_.n_samples < 1 || d_.n_samples > kMaxPbrtLayeredSamples)
+      fail("nsamples must be in [1, " + std::to_string(kMaxPbrtLayeredSamples) + "], got " + std::to_string(d_.n_samples));
   }
   RgbComplexIor conductor_ior() const {
     if (d_.conductor_reflectance) {
@@ -171,22 +194,29 @@ Material build_pbrt_material(const PbrtMaterialDesc& d, const Context& ctx) {
         out.surface = RoughDielectric{eta, tr};
       break;
     }
-    case PbrtMaterialKind::CoatedDiffuse: {
-      if (!std::isfinite(d.g) || !(std::abs(d.g) < 1.0f))
-        p.fail("g must lie strictly between -1 and 1, got " + std::to_string(d.g));
-      if (d.max_depth < 0 || d.max_depth > kMaxPbrtLayeredDepth)
-        p.fail("maxdepth must be in [0, " + std::to_string(kMaxPbrtLayeredDepth) + "], got " + std::to_string(d.max_depth));
-      if (d.n_samples < 1 || d.n_samples > kMaxPbrtLayeredSamples)
-        p.fail("nsamples must be in [1, " + std::to_string(kMaxPbrtLayeredSamples) + "], got " + std::to_string(d.n_samples));
-      out.surface = CoatedDiffuse{p.albedo_like(d.reflectance, "reflectance"),
-                                  RoughDielectric{p.positive(d.eta, "eta"), p.distribution()},
-                                  p.non_negative(d.thickness, "thickness"),
-                                  p.albedo_like(d.albedo, "albedo"),
-                                  d.g,
-                                  d.max_depth,
-                                  d.n_samples};
+    case PbrtMaterialKind::CoatedDiffuse:
+      out.surface =
+          CoatedDiffuse{{p.layers(p.positive(d.eta, "eta")), Lambert{p.albedo_like(d.reflectance, "reflectance")}}};
+      break;
+    case PbrtMaterialKind::CoatedConductor: {
+      const float eta = p.positive(d.eta, "interface.eta");
+      // The conductor lies under the coat: its index relative to the coat's (pbrt-v4 divides eta and k by it).
+      const RgbComplexIor ior = p.conductor_ior();
+      const TrowbridgeReitz base = p.distribution(d.conductor_uroughness, d.conductor_vroughness,
+                                                  "conductor.uroughness", "conductor.vroughness");
+      out.surface = CoatedConductor{{p.layers(eta), RoughConductor{base, {ior.eta / eta, ior.k / eta}}}};
       break;
     }
+    case PbrtMaterialKind::DiffuseTransmission: {
+      const float scale = p.non_negative(d.scale, "scale");
+      // pbrt-v4 scales first, then clamps to [0, 1].
+      out.surface = DiffuseTransmission{p.albedo_like(d.reflectance * scale, "reflectance"),
+                                        p.albedo_like(d.transmittance * scale, "transmittance")};
+      break;
+    }
+    case PbrtMaterialKind::ThinDielectric:
+      out.delta = ThinDielectric{p.positive(d.eta, "eta")};
+      break;
     case PbrtMaterialKind::Interface:
       out.passes_through = true;
       out.delta = Dielectric{1.0f};
@@ -206,6 +236,7 @@ Rgb absorption_from_transparency(Rgb a) {
 
 Material build_material(const MaterialDesc& m, const SceneDesc& scene) {
   const Context ctx(m, scene);
+  if (m.mix) return Material{};  // never shaded: the world resolves a mix to one of its components at each hit
   if (m.pbrt) return build_pbrt_material(*m.pbrt, ctx);
   ctx.check_colour(m.ambient, "AmbientReflectance");
   ctx.check_colour(m.diffuse, "DiffuseReflectance");

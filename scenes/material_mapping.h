@@ -38,9 +38,20 @@
 //                       transmission in the surface part; the material is oriented()).
 //   * coateddiffuse  -> CoatedDiffuse (reflectance and albedo clamped to [0, 1]; its smooth coat's mirror
 //                       reflection comes from sample() as a specular sample).
+//   * coatedconductor -> CoatedConductor: the coat from "interface.*" (eta, roughness as for dielectric), the base
+//                       a RoughConductor (smooth or rough, "conductor.*" roughness) whose eta and k, or the eta = 1,
+//                       k = 2 sqrt(r) / sqrt(1 - r) of "reflectance", are divided by the coat's eta (pbrt-v4: the
+//                       conductor's index relative to the coat); thickness, albedo, g, maxdepth, nsamples as for
+//                       coateddiffuse.
+//   * diffusetransmission -> DiffuseTransmission(clamp(scale * reflectance), clamp(scale * transmittance)), each
+//                       clamped to [0, 1] after scaling as pbrt-v4 does.
+//   * thindielectric -> delta ThinDielectric(eta): the thin slab's summed internal reflections, transmission
+//                       straight through with no change of medium (the material is not oriented()).
 //   * interface      -> passes_through, with a Dielectric(1) pass-through delta for integrators that ignore it.
-// Bad pbrt values (negative or non-finite roughness, thickness, colours; eta <= 0; |g| >= 1; maxdepth or
+// Bad pbrt values (negative or non-finite roughness, thickness, colours, scale; eta <= 0; |g| >= 1; maxdepth or
 // nsamples out of range) throw kiln::Error naming the file, "Material id=N" and the pbrt material type.
+// A mix (MaterialDesc::mix, any format) builds to an empty placeholder: the world picks one of its components at
+// each hit (renderer/world/material_mix.h), so the placeholder is never shaded.
 //
 // Bad input (dangling BRDF index, negative exponent, missing or non-positive refraction index where one is
 // needed, negative or non-finite colours) throws kiln::Error naming the scene file and "Material id=N".

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/color.h"
+#include "core/quadric.h"
 #include "core/transform.h"
 
 namespace kiln {
@@ -133,21 +134,42 @@ enum class MaterialType { Plain, Mirror, Dielectric, Conductor };
 
 // pbrt-v4 materials (scenes/pbrt/materials.cpp fills this, scenes/material_mapping builds it). Spectral parameters are
 // already reduced to linear RGB by the loader.
-enum class PbrtMaterialKind { Diffuse, Conductor, Dielectric, CoatedDiffuse, Interface };
+enum class PbrtMaterialKind {
+  Diffuse,
+  Conductor,
+  Dielectric,
+  CoatedDiffuse,
+  CoatedConductor,
+  DiffuseTransmission,
+  ThinDielectric,
+  Interface
+};
 struct PbrtMaterialDesc {
   PbrtMaterialKind kind = PbrtMaterialKind::Diffuse;
-  Rgb reflectance{0.5f};                     // diffuse, coateddiffuse
-  std::optional<Rgb> conductor_reflectance;  // conductor given by "reflectance" instead of eta / k
-  Rgb conductor_eta{0.2f, 0.92f, 1.1f};      // conductor complex IOR (pbrt's default is copper)
+  Rgb reflectance{0.5f};                     // diffuse, coateddiffuse, diffusetransmission
+  Rgb transmittance{0.25f};                  // diffusetransmission
+  float scale = 1.0f;                        // diffusetransmission: multiplies reflectance and transmittance
+  std::optional<Rgb> conductor_reflectance;  // (coated) conductor given by "reflectance" instead of eta / k
+  Rgb conductor_eta{0.2f, 0.92f, 1.1f};      // (coated) conductor complex IOR (pbrt's default is copper)
   Rgb conductor_k{3.91f, 2.45f, 2.14f};
-  float eta = 1.5f;                          // dielectric / coateddiffuse interface IOR
-  float uroughness = 0.0f, vroughness = 0.0f;  // as written in the file ("roughness" sets both)
+  float eta = 1.5f;  // dielectric / thindielectric IOR, coateddiffuse / coatedconductor interface IOR
+  float uroughness = 0.0f, vroughness = 0.0f;  // as written in the file ("roughness" sets both); coatedconductor:
+                                               // the interface's
+  float conductor_uroughness = 0.0f, conductor_vroughness = 0.0f;  // coatedconductor: the conductor's
   bool remap_roughness = true;
-  float thickness = 0.01f;                   // coateddiffuse layer
-  Rgb albedo{0.0f};                          // coateddiffuse medium albedo
-  float g = 0.0f;                            // coateddiffuse Henyey-Greenstein asymmetry
-  int max_depth = 10;                        // coateddiffuse random-walk length
-  int n_samples = 1;                         // coateddiffuse estimator samples
+  float thickness = 0.01f;  // coated layers
+  Rgb albedo{0.0f};         // coated layers' medium albedo
+  float g = 0.0f;           // coated layers' Henyey-Greenstein asymmetry
+  int max_depth = 10;       // coated layers' random-walk length
+  int n_samples = 1;        // coated layers' estimator samples
+};
+
+// A material that is one of two others at each hit (pbrt-v4 "mix"): the second with probability `amount`, chosen
+// by a hash of the hit so that the image is the blend in expectation. Components may be mixes themselves (no
+// cycles: the loader rejects them).
+struct MaterialMixDesc {
+  std::array<int, 2> materials{-1, -1};  // indices into SceneDesc::materials
+  float amount = 0.5f;
 };
 
 struct MaterialDesc {
@@ -164,6 +186,7 @@ struct MaterialDesc {
   bool degamma = false;
   bool has_refraction_index = false;
   std::optional<PbrtMaterialDesc> pbrt;  // set by the pbrt-v4 loader; the fields above are then unused
+  std::optional<MaterialMixDesc> mix;    // a per-hit choice between two materials; every other field is unused
 };
 
 // Triangle mesh in object space. Indices are 0-based triplets into positions.
@@ -199,6 +222,24 @@ struct TextureDesc {
   Rgb black{0.0f}, white{1.0f};                        // BlackColor, WhiteColor
 };
 
+// pbrt's "alpha" on a shape: its opacity, the constant `value` or, when texture >= 0, the float texture
+// SceneDesc::textures[texture] read at the hit's (u, v) through `image` (renderer/world/alpha_cutouts.h). Opacity 1
+// everywhere (the default) is no cut-out at all.
+enum class AlphaEncoding { Linear, Srgb, Gamma };
+struct AlphaImageDesc {
+  float su = 1.0f, sv = 1.0f, du = 0.0f, dv = 0.0f;  // pbrt's uv mapping: s = su u + du, t = sv v + dv
+  AlphaEncoding encoding = AlphaEncoding::Linear;    // how the file's 8-bit values become linear
+  float gamma = 2.2f;                                // AlphaEncoding::Gamma
+  float scale = 1.0f;
+  bool invert = false;  // max(0, 1 - value)
+};
+struct ShapeAlphaDesc {
+  float value = 1.0f;
+  int texture = -1;
+  AlphaImageDesc image;
+  bool cuts() const { return texture >= 0 || value < 1.0f; }
+};
+
 struct MeshDesc {
   std::string name;     // for messages, e.g. "Mesh id=3"
   std::vector<Vec3f> positions;
@@ -216,6 +257,7 @@ struct MeshDesc {
   Vec3f motion{0, 0, 0};          // MotionBlur: world-space translation over the shutter interval (at time t: t * motion)
   std::vector<int> textures;      // indices into SceneDesc::textures
   MediumInterfaceDesc media;
+  ShapeAlphaDesc alpha;           // pbrt "alpha" (also for the instances of an instance base)
 };
 
 struct SphereDesc {
@@ -227,6 +269,23 @@ struct SphereDesc {
   std::optional<Rgb> emission;  // LightSphere radiance
   Vec3f motion{0, 0, 0};        // MotionBlur (see MeshDesc::motion)
   std::vector<int> textures;    // indices into SceneDesc::textures
+  MediumInterfaceDesc media;
+  ShapeAlphaDesc alpha;         // pbrt "alpha": the sphere is then built as a quadric (pbrt's (u, v))
+};
+
+// A pbrt-v4 disk, cylinder or partial sphere (core/quadric.h), placed by to_world. flip: its normal is the opposite
+// of the natural one (pbrt's ReverseOrientation exclusive-or a mirroring to_world), which makes the other side the
+// one that emits (one-sided emission) and the outside of a dielectric.
+struct QuadricDesc {
+  std::string name;
+  Quadric quadric;
+  Transform to_world;
+  bool flip = false;
+  int material = -1;
+  std::optional<Rgb> emission;
+  bool two_sided_emission = false;
+  Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
+  ShapeAlphaDesc alpha;
   MediumInterfaceDesc media;
 };
 
@@ -258,11 +317,24 @@ struct AreaLightDesc {
   Rgb radiance;
   bool radiance_is_intensity = false;  // 2019 <Intensity> spelling (see README for the convention)
 };
-// Lat-long HDR map on an infinitely distant sphere (CENG795 SphericalDirectionalLight); `element` names the XML
-// element (with its line) for messages about the image.
+// An HDR image on an infinitely distant sphere (CENG795 SphericalDirectionalLight, pbrt-v4 "infinite" with
+// "filename"); `element` names the scene element (with its file and line) for messages about the image.
+//   LatLongYUp  the course's lat-long map (y up; lights/image_infinite_light.h)
+//   LatLongZUp  pbrt-v3's lat-long map: z up, u = phi / 2 pi with phi from +x towards +y, v = theta / pi
+//   EqualArea   pbrt-v4's octahedral equal-area square (z up)
+enum class EnvMapFormat { LatLongYUp, LatLongZUp, EqualArea };
 struct EnvLightDesc {
   std::string image_path;
   std::string element;
+  EnvMapFormat format = EnvMapFormat::LatLongYUp;
+  // EqualArea only: a non-square image (which pbrt-v4 refuses) with a 2:1 aspect is read as LatLongZUp, with a
+  // warning; any other non-square image is an error.
+  bool lat_long_if_not_square = false;
+  Transform light_to_world;  // the map's frame in the world (its linear part)
+  float scale = 1.0f;        // radiance = texel x scale
+  // pbrt's "illuminance" E: the scale is further multiplied by E / k, k the illuminance the map gives a surface
+  // facing the map's +z, computed as pbrt-v4 computes it (renderer/world/environment_map.h).
+  std::optional<float> illuminance;
 };
 // Constant radiance arriving from every direction (pbrt "infinite" light with "L"), seen by rays that escape.
 struct InfiniteLightDesc { Rgb radiance; };
@@ -280,6 +352,7 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;
   std::vector<MeshDesc> meshes;
   std::vector<SphereDesc> spheres;
+  std::vector<QuadricDesc> quadrics;
   std::vector<InstanceDesc> instances;
   Rgb ambient_light{0};
   std::vector<PointLightDesc> point_lights;

@@ -6,9 +6,11 @@
 #include <chrono>
 #include <limits>
 
-#include "renderer/accel/surface_point.h"
+#include "renderer/accel/alpha.h"
 #include "renderer/accel/object_ray.h"
+#include "renderer/accel/quadric_intersect.h"
 #include "renderer/accel/shape_bounds.h"
+#include "renderer/accel/surface_point.h"
 #include "renderer/accel/sphere_intersect.h"
 #include "renderer/accel/traceable_ray.h"
 #include "renderer/accel/tri4_intersect.h"
@@ -17,17 +19,17 @@
 namespace kiln {
 namespace {
 
-// A leaf primitive: the shape it belongs to and, in the low bits of prim, the triangle / sphere / instance index;
-// the top two bits say which.
+// A leaf primitive: the shape it belongs to and, in the low bits of prim, the triangle / sphere / instance / quadric
+// index; the top three bits say which.
 struct PrimRef {
   uint32_t shape;
   uint32_t prim;
 };
-constexpr uint32_t kKindShift = 30;
+constexpr uint32_t kKindShift = 29;
 constexpr uint32_t kIndexMask = (1u << kKindShift) - 1;
 // A moving world mesh is one primitive of the world tree (its swept box) with its own tree at time 0, like an
 // instance's prototype; moving spheres and instances keep their kinds and move the ray back by their offset.
-constexpr uint32_t kKindTriangle = 0, kKindSphere = 1, kKindInstance = 2, kKindMovingMesh = 3;
+constexpr uint32_t kKindTriangle = 0, kKindSphere = 1, kKindInstance = 2, kKindMovingMesh = 3, kKindQuadric = 4;
 inline uint32_t ref_kind(PrimRef r) { return r.prim >> kKindShift; }
 inline uint32_t ref_index(PrimRef r) { return r.prim & kIndexMask; }
 
@@ -79,7 +81,9 @@ struct TravRay {
   float tmin;
   float time;
   int near[3], far[3];  // rows of Node4::b holding the entry / exit plane on each axis
-  explicit TravRay(const Ray& r) : o(r.o), d(r.d), wr(make_watertight_ray(r)), tmin(r.tmin), time(r.time) {
+  const Ray* world;     // the query's world-space ray (the alpha hash's), also inside instances and moving meshes
+  TravRay(const Ray& r, const Ray* world_ray)
+      : o(r.o), d(r.d), wr(make_watertight_ray(r)), tmin(r.tmin), time(r.time), world(world_ray) {
     for (int a = 0; a < 3; ++a) {
       const float c = std::abs(d[a]) >= kMinDirComponent ? d[a] : std::copysign(kMinDirComponent, d[a]);
       inv_d[a] = 1.0f / c;
@@ -191,6 +195,7 @@ struct Bvh::Impl {
   std::vector<Transform> instance_to_object;
   std::vector<Transform> sphere_to_object;
   std::vector<uint8_t> sphere_transformed;
+  std::vector<Transform> quadric_to_object;
   BvhStats stats;
 
   Impl(const WorldGeometry& geometry, const BvhOptions& opt) : g(geometry), options(opt) {}
@@ -248,12 +253,13 @@ struct Bvh::Impl {
       sphere_to_object.push_back(s.to_world.inverse());
       sphere_transformed.push_back(!s.to_world.is_identity());
     }
+    for (const QuadricShape& q : g.quadrics) quadric_to_object.push_back(q.to_world.inverse());
     moving_meshes.resize(g.meshes.size());
     for (const Shape& s : g.shapes)
       if (s.kind == ShapeKind::Mesh && s.moving()) moving_meshes[s.index] = build_mesh_tree(g.meshes[s.index]);
 
     // World primitives: triangles of static world meshes (in shape order), then spheres, then instances, then
-    // moving meshes.
+    // moving meshes, then quadrics.
     std::vector<size_t> first_tri(g.shapes.size() + 1, 0);
     for (size_t i = 0; i < g.shapes.size(); ++i) {
       const Shape& s = g.shapes[i];
@@ -295,6 +301,13 @@ struct Bvh::Impl {
         refs.push_back({i, (kKindMovingMesh << kKindShift) | s.index});
       }
     }
+    for (uint32_t i = 0; i < g.shapes.size(); ++i) {
+      const Shape& s = g.shapes[i];
+      if (s.kind == ShapeKind::Quadric) {
+        bounds.push_back(shape_world_bounds(g, s));
+        refs.push_back({i, (kKindQuadric << kKindShift) | s.index});
+      }
+    }
     if (options.debug_drop_primitive && *options.debug_drop_primitive < refs.size()) {
       bounds.erase(bounds.begin() + ptrdiff_t(*options.debug_drop_primitive));
       refs.erase(refs.begin() + ptrdiff_t(*options.debug_drop_primitive));
@@ -305,7 +318,9 @@ struct Bvh::Impl {
 
     stats.world = world.binary_stats;
     stats.wide_nodes = world.nodes.size();
-    stats.bytes = world.bytes() + (instance_to_object.capacity() + sphere_to_object.capacity()) * sizeof(Transform);
+    stats.bytes = world.bytes() + (instance_to_object.capacity() + sphere_to_object.capacity() +
+                                   quadric_to_object.capacity()) *
+                                      sizeof(Transform);
     for (const Tree& t : moving_meshes) stats.bytes += t.bytes();
     for (const Tree& t : prototypes) {
       if (t.empty()) continue;
@@ -316,8 +331,9 @@ struct Bvh::Impl {
   }
 
   // Closest hit (kAny = false) or any hit (kAny = true) in tree with t in [ray.tmin, tmax]; tmax shrinks as
-  // closer hits are found. shape_override names the instance shape when traversing a prototype tree.
-  template <bool kAny>
+  // closer hits are found. shape_override names the instance shape when traversing a prototype tree. kAlpha: the
+  // scene has alpha cut-outs (compiled out of the triangle leaves of scenes without).
+  template <bool kAny, bool kAlpha>
   bool traverse(const Tree& tree, const TravRay& r, float& tmax, Closest& best, uint32_t shape_override) const {
     if (tree.empty()) return false;
     struct Entry {
@@ -376,7 +392,7 @@ struct Bvh::Impl {
         ref = hits[0].ref;
       }
       if (!descend) continue;
-      if (leaf<kAny>(tree, ref, r, tmax, best, shape_override)) {
+      if (leaf<kAny, kAlpha>(tree, ref, r, tmax, best, shape_override)) {
         if constexpr (kAny) return true;
         found = true;
       }
@@ -384,14 +400,14 @@ struct Bvh::Impl {
     return found;
   }
 
-  template <bool kAny>
+  template <bool kAny, bool kAlpha>
   bool leaf(const Tree& tree, ChildRef ref, const TravRay& r, float& tmax, Closest& best,
             uint32_t shape_override) const {
     const uint32_t first = ref_first(ref), count = ref_count(ref);
     bool found = false;
     if (ref & kOtherBit) [[unlikely]] {
       for (uint32_t i = first; i < first + count; ++i) {
-        if (other_prim<kAny>(tree.refs[i], r, tmax, best)) {
+        if (other_prim<kAny, kAlpha>(tree.refs[i], r, tmax, best)) {
           if constexpr (kAny) return true;
           found = true;
         }
@@ -401,6 +417,9 @@ struct Bvh::Impl {
     for (uint32_t p = first; p < first + count; ++p) {
       alignas(16) float t[4], b1[4], b2[4];
       int mask = intersect_tri4(tree.packets[p], r.wr, r.tmin, tmax, t, b1, b2);
+      if constexpr (kAlpha) {
+        if (mask) mask = alpha_lanes(tree, tree.packets[p], mask, r, b1, b2, shape_override);
+      }
       if (!mask) continue;
       if constexpr (kAny) return true;
       int lane = __builtin_ctz(unsigned(mask));
@@ -416,15 +435,46 @@ struct Bvh::Impl {
     return found;
   }
 
-  // A sphere, an instance (whose prototype tree is traversed with the ray in object space) or a moving mesh (its
-  // tree traversed with the ray moved back by the mesh's offset at the ray's time).
+  // The lanes of a triangle packet's hit mask whose hits the alpha test keeps.
+  int alpha_lanes(const Tree& tree, const Tri4& packet, int mask, const TravRay& r, const float* b1, const float* b2,
+                  uint32_t shape_override) const {
+    for (int m = mask; m; m &= m - 1) {
+      const int lane = __builtin_ctz(unsigned(m));
+      const PrimRef pr = tree.refs[packet.slot[lane]];
+      const uint32_t shape = shape_override != kInvalidId ? shape_override : pr.shape;
+      if (g.shapes[shape].alpha && !alpha_keeps(g, *r.world, shape, ref_index(pr), {b1[lane], b2[lane]}, 0))
+        mask &= ~(1 << lane);
+    }
+    return mask;
+  }
+
+  // A quadric, through its own object space. Kept out of line: inlined into other_prim, it pushes the sphere
+  // and instance transforms there out of line too, which costs scenes without quadrics ~1% of their shadow queries.
   template <bool kAny>
+  [[gnu::noinline]] bool quadric_prim(const PrimRef ref, Vec3f origin, const TravRay& r, float& tmax,
+                                      Closest& best) const {
+    const uint32_t qi = ref_index(ref);
+    Vec3f o = origin, d = r.d;
+    to_object_space(quadric_to_object[qi], o, d);
+    const bool alpha = g.shapes[ref.shape].alpha;
+    const auto h = intersect_quadric(g.quadrics[qi].quadric, o, d, r.tmin, tmax, [&](const QuadricHit& c) {
+      return !alpha || alpha_keeps(g, *r.world, ref.shape, 0, c.uv, c.root);
+    });
+    if (!h) return false;
+    tmax = h->t;
+    if constexpr (!kAny) best = {h->t, ref.shape, 0, h->uv.x, h->uv.y};
+    return true;
+  }
+
+  // A sphere, a quadric, an instance (whose prototype tree is traversed with the ray in object space) or a moving
+  // mesh (its tree traversed with the ray moved back by the mesh's offset at the ray's time).
+  template <bool kAny, bool kAlpha>
   bool other_prim(const PrimRef ref, const TravRay& r, float& tmax, Closest& best) const {
     const Shape& shape = g.shapes[ref.shape];
     const Vec3f origin = shape.moving() ? r.o - shape.offset_at(r.time) : r.o;
     if (ref_kind(ref) == kKindMovingMesh) {
-      const TravRay back(Ray{origin, r.d, r.tmin, tmax, r.time});
-      return traverse<kAny>(moving_meshes[ref_index(ref)], back, tmax, best, ref.shape);
+      const TravRay back(Ray{origin, r.d, r.tmin, tmax, r.time}, r.world);
+      return traverse<kAny, kAlpha>(moving_meshes[ref_index(ref)], back, tmax, best, ref.shape);
     }
     if (ref_kind(ref) == kKindSphere) {
       const uint32_t si = ref_index(ref);
@@ -437,11 +487,12 @@ struct Bvh::Impl {
       if constexpr (!kAny) best = {*t, ref.shape, 0, 0.0f, 0.0f};
       return true;
     }
+    if (ref_kind(ref) == kKindQuadric) return quadric_prim<kAny>(ref, origin, r, tmax, best);
     const uint32_t ii = ref_index(ref);
     Vec3f o = origin, d = r.d;
     to_object_space(instance_to_object[ii], o, d);
-    const TravRay obj(Ray{o, d, r.tmin, tmax, r.time});
-    return traverse<kAny>(prototypes[g.instances[ii].prototype], obj, tmax, best, ref.shape);
+    const TravRay obj(Ray{o, d, r.tmin, tmax, r.time}, r.world);
+    return traverse<kAny, kAlpha>(prototypes[g.instances[ii].prototype], obj, tmax, best, ref.shape);
   }
 };
 
@@ -455,7 +506,10 @@ bool Bvh::intersect(const Ray& ray, Hit& hit) const {
   if (!traceable(ray)) return false;
   float tmax = ray.tmax;
   Closest best{ray.tmax};
-  if (!impl_->traverse<false>(impl_->world, TravRay(ray), tmax, best, kInvalidId)) return false;
+  const TravRay r(ray, &ray);
+  const bool found = impl_->g.alpha.opacity ? impl_->traverse<false, true>(impl_->world, r, tmax, best, kInvalidId)
+                                            : impl_->traverse<false, false>(impl_->world, r, tmax, best, kInvalidId);
+  if (!found) return false;
   const WorldGeometry& g = impl_->g;
   hit.t = best.t;
   hit.shape = best.shape;
@@ -466,6 +520,13 @@ bool Bvh::intersect(const Ray& ray, Hit& hit) const {
     Ray back = ray;  // a moving sphere is hit where it is at the ray's time
     if (s.moving()) back.o -= s.offset_at(ray.time);
     hit.ng = sphere_world_normal(g.spheres[s.index], back, best.t);
+  } else if (s.kind == ShapeKind::Quadric) {
+    hit.prim = 0;
+    hit.u = best.b1;
+    hit.v = best.b2;
+    Ray back = ray;
+    if (s.moving()) back.o -= s.offset_at(ray.time);
+    hit.ng = quadric_world_normal(g.quadrics[s.index], back, best.t);
   } else {
     hit.prim = best.prim;
     hit.u = best.b1;
@@ -479,7 +540,9 @@ bool Bvh::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   float tmax = ray.tmax;
   Closest unused{ray.tmax};
-  return impl_->traverse<true>(impl_->world, TravRay(ray), tmax, unused, kInvalidId);
+  const TravRay r(ray, &ray);
+  return impl_->g.alpha.opacity ? impl_->traverse<true, true>(impl_->world, r, tmax, unused, kInvalidId)
+                                : impl_->traverse<true, false>(impl_->world, r, tmax, unused, kInvalidId);
 }
 
 AccelStats Bvh::stats() const { return {"bvh", impl_->stats.build_seconds, impl_->stats.bytes}; }

@@ -15,8 +15,11 @@
 // slab test. Leaves hold one kind of primitive only (triangles, or spheres/instances).
 //
 // Ray conventions are Embree's: hits with t in [ray.tmin, ray.tmax] (no epsilon), triangles tested with the
-// watertight test of triangle_intersect.h, spheres with sphere_intersect.h, Hit::ng from surface_point.h; rays that
-// Embree would reject (traceable_ray.h) miss.
+// watertight test of triangle_intersect.h, spheres with sphere_intersect.h, quadrics with quadric_intersect.h,
+// Hit::ng from surface_point.h; rays that Embree would reject (traceable_ray.h) miss. Alpha cut-outs: a triangle
+// packet's lanes on shapes with alpha are filtered through renderer/accel/alpha.h in a traversal instantiated for
+// scenes with alpha only (scenes without take the other instantiation, one branch per query); quadrics test it on
+// each root.
 #pragma once
 #include <memory>
 #include <optional>
@@ -29,7 +32,8 @@ namespace kiln {
 struct BvhOptions {
   BvhBuildOptions build{.max_leaf_size = 8, .leaf_block = 4};  // leaves are tested as 4-wide packets
   // Test hook: leave world primitive k out of the BVH (primitives are numbered world-mesh triangles first, in
-  // shape order, then spheres, then instances) so tests can show that check_bvh detects a broken accelerator.
+  // shape order, then spheres, instances, moving meshes and quadrics) so tests can show that check_bvh detects a
+  // broken accelerator.
   std::optional<size_t> debug_drop_primitive;
 };
 

@@ -7,6 +7,7 @@
 
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "renderer/accel/alpha.h"
 #include "renderer/accel/bvh.h"
 #include "renderer/accel/embree_accel.h"
 #include "renderer/accel/exact_hit.h"
@@ -43,10 +44,26 @@ Verdict judge(const ExactHit& e) {
   return e.near_edge && e.in_range ? Verdict::Borderline : Verdict::Spurious;
 }
 
+// How close the alpha hash may come to the opacity before the alpha test counts as borderline: float hit
+// coordinates differ from exact ones by ~1e-7, which moves a bilinearly filtered opacity by far less.
+constexpr float kAlphaNoise = 1e-4f;
+
+// The exact hit on a primitive, with the alpha test of its shape applied at the exact hit coordinates: a crossing the
+// test passes through is no hit (borderline when the hash lies within kAlphaNoise of the opacity).
+ExactHit exact_hit_with_alpha(const WorldGeometry& g, const Ray& r, uint32_t shape, uint32_t prim) {
+  ExactHit e = exact_hit(g, r, shape, prim);
+  if (!e.hit || !g.shapes[shape].alpha) return e;
+  const float a = g.alpha.opacity(g.alpha.world, shape, prim, e.where);
+  const float u = alpha_hash(r, shape, prim, e.root);
+  if (a > 0.0f && a < 1.0f && std::abs(u - a) <= kAlphaNoise) e.near_edge = true;
+  e.hit = alpha_keeps(g, r, shape, prim, e.where, e.root);
+  return e;
+}
+
 // Which of two disagreeing closest-hit answers (a: Embree, b: BVH) exact arithmetic contradicts.
 Outcome referee(const WorldGeometry& g, const Ray& r, bool ha, const Hit& a, bool hb, const Hit& b) {
-  const ExactHit ea = ha ? exact_hit(g, r, a.shape, a.prim) : ExactHit{};
-  const ExactHit eb = hb ? exact_hit(g, r, b.shape, b.prim) : ExactHit{};
+  const ExactHit ea = ha ? exact_hit_with_alpha(g, r, a.shape, a.prim) : ExactHit{};
+  const ExactHit eb = hb ? exact_hit_with_alpha(g, r, b.shape, b.prim) : ExactHit{};
   const Verdict va = ha ? judge(ea) : Verdict::Real, vb = hb ? judge(eb) : Verdict::Real;
   const bool a_bad = va == Verdict::Spurious, b_bad = vb == Verdict::Spurious;
   if (a_bad || b_bad) return a_bad && b_bad ? Outcome::Unresolved : a_bad ? Outcome::EmbreeFault : Outcome::BvhFault;
@@ -78,7 +95,7 @@ Outcome compare_occlusion(const WorldGeometry& g, const Ray& r, const Accelerato
   const Outcome blame_other = oe ? Outcome::BvhFault : Outcome::EmbreeFault;
   Hit h;
   if (!blocked.intersect(r, h)) return blame_blocked;  // occluded() and intersect() contradict each other
-  const Verdict v = judge(exact_hit(g, r, h.shape, h.prim));
+  const Verdict v = judge(exact_hit_with_alpha(g, r, h.shape, h.prim));
   return v == Verdict::Borderline ? Outcome::Unresolved : v == Verdict::Real ? blame_other : blame_blocked;
 }
 

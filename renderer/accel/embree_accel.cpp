@@ -9,10 +9,12 @@
 #include <vector>
 
 #include "core/error.h"
-#include "renderer/accel/surface_point.h"
+#include "renderer/accel/alpha.h"
 #include "renderer/accel/object_ray.h"
+#include "renderer/accel/quadric_intersect.h"
 #include "renderer/accel/shape_bounds.h"
 #include "renderer/accel/sphere_intersect.h"
+#include "renderer/accel/surface_point.h"
 #include "renderer/accel/traceable_ray.h"
 
 namespace kiln {
@@ -28,13 +30,18 @@ struct SphereData {
   Vec3f motion{0.0f};
 };
 
-void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
-  const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
-  Bounds3f b = sphere_world_bounds(*s->shape);
-  const Vec3f offset = s->motion * float(args->timeStep);  // time steps 0 and 1 are the shutter's ends
+// A user geometry's bounds at a time step: its time-0 bounds moved by its motion (time steps 0 and 1 are the
+// shutter's ends).
+void store_bounds(const RTCBoundsFunctionArguments* args, Bounds3f b, Vec3f motion) {
+  const Vec3f offset = motion * float(args->timeStep);
   b.lo += offset;
   b.hi += offset;
   *args->bounds_o = RTCBounds{b.lo.x, b.lo.y, b.lo.z, 0.0f, b.hi.x, b.hi.y, b.hi.z, 0.0f};
+}
+
+void sphere_bounds_cb(const RTCBoundsFunctionArguments* args) {
+  const auto* s = static_cast<const SphereData*>(args->geometryUserPtr);
+  store_bounds(args, sphere_world_bounds(*s->shape), s->motion);
 }
 
 inline void sphere_object_ray(const SphereData& s, Vec3f& o, Vec3f& d) {
@@ -84,6 +91,90 @@ void sphere_occluded_cb(const RTCOccludedFunctionNArguments* args) {
   }
 }
 
+// The intersect context Kiln passes to every query: Embree hands it to the callbacks, which read the world-space
+// ray from it (the alpha hash is taken of the ray as the caller gave it, also inside instances, where Embree's own
+// ray is in object space).
+struct QueryContext {
+  RTCIntersectContext rtc;  // first member: Embree's pointer to it is a pointer to the whole
+  const Ray* world_ray;     // the caller's, alive for the query
+};
+
+const Ray& world_ray_of(const RTCIntersectContext* context) {
+  return *reinterpret_cast<const QueryContext*>(context)->world_ray;
+}
+
+// What a quadric's user-geometry callbacks need (as SphereData).
+struct QuadricData {
+  const WorldGeometry* geometry = nullptr;
+  uint32_t shape = 0;
+  const QuadricShape* quadric = nullptr;
+  Transform to_object;
+  Vec3f motion{0.0f};
+  bool alpha = false;
+};
+
+void quadric_bounds_cb(const RTCBoundsFunctionArguments* args) {
+  const auto* q = static_cast<const QuadricData*>(args->geometryUserPtr);
+  store_bounds(args, quadric_world_bounds(*q->quadric), q->motion);
+}
+
+// Lane i of a ray packet against the quadric (object space), its alpha test included.
+std::optional<QuadricHit> quadric_lane(const QuadricData& q, const RTCIntersectContext* context, RTCRayN* ray,
+                                       unsigned n, unsigned i) {
+  Vec3f o = Vec3f(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i)) -
+            q.motion * RTCRayN_time(ray, n, i);
+  Vec3f d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
+  to_object_space(q.to_object, o, d);
+  return intersect_quadric(q.quadric->quadric, o, d, RTCRayN_tnear(ray, n, i), RTCRayN_tfar(ray, n, i),
+                           [&](const QuadricHit& h) {
+                             return !q.alpha || alpha_keeps(*q.geometry, world_ray_of(context), q.shape, 0, h.uv,
+                                                            h.root);
+                           });
+}
+
+void quadric_intersect_cb(const RTCIntersectFunctionNArguments* args) {
+  const auto* q = static_cast<const QuadricData*>(args->geometryUserPtr);
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const auto h = quadric_lane(*q, args->context, ray, args->N, i);
+    if (!h) continue;
+    // The normal is computed once for the closest hit (EmbreeAccel::intersect), as the BVH does.
+    RTCRayN_tfar(ray, args->N, i) = h->t;
+    RTCHitN_Ng_x(hit, args->N, i) = 0.0f;
+    RTCHitN_Ng_y(hit, args->N, i) = 0.0f;
+    RTCHitN_Ng_z(hit, args->N, i) = 1.0f;
+    RTCHitN_u(hit, args->N, i) = h->uv.x;
+    RTCHitN_v(hit, args->N, i) = h->uv.y;
+    RTCHitN_primID(hit, args->N, i) = args->primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
+    RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+  }
+}
+
+void quadric_occluded_cb(const RTCOccludedFunctionNArguments* args) {
+  const auto* q = static_cast<const QuadricData*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    if (quadric_lane(*q, args->context, args->ray, args->N, i)) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+  }
+}
+
+// Alpha on triangles: Embree asks about every candidate hit; a rejected one (valid = 0) lets traversal go on. The
+// shape is the instance's when the triangle belongs to an instanced prototype.
+void triangle_alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* g = static_cast<const WorldGeometry*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned inst = RTCHitN_instID(args->hit, args->N, i, 0);
+    const uint32_t shape = inst != RTC_INVALID_GEOMETRY_ID ? inst : RTCHitN_geomID(args->hit, args->N, i);
+    const Vec2f b(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    if (!alpha_keeps(*g, world_ray_of(args->context), shape, RTCHitN_primID(args->hit, args->N, i), b, 0))
+      args->valid[i] = 0;
+  }
+}
+
 // Embree's SSE loads may read up to 12 bytes past the last float3/uint3 element, so a caller's array is shared
 // only when its allocation extends at least one element beyond its size.
 template <typename T>
@@ -104,6 +195,7 @@ struct EmbreeAccel::Impl {
   RTCScene scene = nullptr;
   std::vector<RTCScene> prototype_scenes;  // null for prototypes no instance uses
   std::vector<SphereData> sphere_data;
+  std::vector<QuadricData> quadric_data;
   std::string last_error;
   std::atomic<int64_t> bytes{0};
   double build_seconds = 0;
@@ -125,8 +217,14 @@ struct EmbreeAccel::Impl {
 
   // motion non-zero: two time steps, the second vertex buffer holding the vertices moved by it (Embree
   // interpolates linearly between them, which is the translation at every instant).
-  RTCGeometry triangle_geometry(const TriangleMesh& m, Vec3f motion = Vec3f(0.0f)) {
+  // alpha: the mesh has an alpha cut-out (filter functions installed; shapes without one pay nothing).
+  RTCGeometry triangle_geometry(const TriangleMesh& m, Vec3f motion = Vec3f(0.0f), bool alpha = false) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (alpha) {
+      rtcSetGeometryUserData(geom, const_cast<WorldGeometry*>(&geometry));
+      rtcSetGeometryIntersectFilterFunction(geom, triangle_alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(geom, triangle_alpha_filter);
+    }
     const size_t nv = m.p.size(), nt = m.triangle_count();
     const bool moving = motion.x != 0.0f || motion.y != 0.0f || motion.z != 0.0f;
     if (moving) {
@@ -154,6 +252,20 @@ struct EmbreeAccel::Impl {
     return geom;
   }
 
+  // One primitive computed by callbacks on `data`; a moving one has the shutter's two time steps.
+  RTCGeometry user_geometry(void* data, bool moving, RTCBoundsFunction bounds, RTCIntersectFunctionN intersect,
+                            RTCOccludedFunctionN occluded) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    if (moving) rtcSetGeometryTimeStepCount(geom, 2);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, data);
+    rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, intersect);
+    rtcSetGeometryOccludedFunction(geom, occluded);
+    rtcCommitGeometry(geom);
+    return geom;
+  }
+
   RTCScene new_scene() {
     RTCScene s = rtcNewScene(device);
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
@@ -177,6 +289,7 @@ struct EmbreeAccel::Impl {
         &bytes);
     scene = new_scene();
     sphere_data.reserve(geometry.spheres.size());  // callbacks keep pointers into it
+    quadric_data.reserve(geometry.quadrics.size());
     prototype_scenes.assign(geometry.prototypes.size(), nullptr);
 
     const auto& shapes = geometry.shapes;
@@ -185,25 +298,24 @@ struct EmbreeAccel::Impl {
       RTCGeometry geom = nullptr;
       if (s.kind == ShapeKind::Mesh) {
         if (geometry.meshes[s.index].triangle_count() == 0) continue;
-        geom = triangle_geometry(geometry.meshes[s.index], s.motion);
+        geom = triangle_geometry(geometry.meshes[s.index], s.motion, s.alpha);
       } else if (s.kind == ShapeKind::Sphere) {
         const SphereShape& sph = geometry.spheres[s.index];
         sphere_data.push_back({&sph, !sph.to_world.is_identity(), sph.to_world.inverse(), s.motion});
-        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        if (s.moving()) rtcSetGeometryTimeStepCount(geom, 2);
-        rtcSetGeometryUserPrimitiveCount(geom, 1);
-        rtcSetGeometryUserData(geom, &sphere_data.back());
-        rtcSetGeometryBoundsFunction(geom, sphere_bounds_cb, nullptr);
-        rtcSetGeometryIntersectFunction(geom, sphere_intersect_cb);
-        rtcSetGeometryOccludedFunction(geom, sphere_occluded_cb);
-        rtcCommitGeometry(geom);
+        geom = user_geometry(&sphere_data.back(), s.moving(), sphere_bounds_cb, sphere_intersect_cb, sphere_occluded_cb);
+      } else if (s.kind == ShapeKind::Quadric) {
+        const QuadricShape& q = geometry.quadrics[s.index];
+        quadric_data.push_back({&geometry, id, &q, q.to_world.inverse(), s.motion, s.alpha});
+        geom = user_geometry(&quadric_data.back(), s.moving(), quadric_bounds_cb, quadric_intersect_cb,
+                             quadric_occluded_cb);
       } else {
         const MeshInstance& inst = geometry.instances[s.index];
         if (geometry.prototypes[inst.prototype].triangle_count() == 0) continue;
         RTCScene& proto = prototype_scenes[inst.prototype];
         if (!proto) {
           proto = new_scene();
-          RTCGeometry tri = triangle_geometry(geometry.prototypes[inst.prototype]);
+          // The instances of one prototype share its alpha (pbrt's object instances share their shapes').
+          RTCGeometry tri = triangle_geometry(geometry.prototypes[inst.prototype], Vec3f(0.0f), s.alpha);
           rtcAttachGeometryByID(proto, tri, 0);
           rtcReleaseGeometry(tri);
           rtcCommitScene(proto);
@@ -259,13 +371,14 @@ RTCRay to_rtc(const Ray& r) {
 
 bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
+  QueryContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.world_ray = &ray;
   RTCRayHit rh;
   rh.ray = to_rtc(ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &ctx, &rh);
+  rtcIntersect1(impl_->scene, &ctx.rtc, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   const WorldGeometry& g = impl_->geometry;
   hit.t = rh.ray.tfar;
@@ -275,6 +388,13 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
     hit.prim = 0;
     hit.u = hit.v = 0.0f;
     hit.ng = Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  } else if (s.kind == ShapeKind::Quadric) {
+    hit.prim = 0;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    Ray back = ray;  // a moving quadric is hit where it is at the ray's time
+    if (s.moving()) back.o -= s.offset_at(ray.time);
+    hit.ng = quadric_world_normal(g.quadrics[s.index], back, hit.t);
   } else {
     hit.prim = rh.hit.primID;
     hit.u = rh.hit.u;
@@ -287,10 +407,11 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
 
 bool EmbreeAccel::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
+  QueryContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.world_ray = &ray;
   RTCRay r = to_rtc(ray);
-  rtcOccluded1(impl_->scene, &ctx, &r);
+  rtcOccluded1(impl_->scene, &ctx.rtc, &r);
   return r.tfar == -kInfinity;
 }
 

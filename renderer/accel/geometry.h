@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/bounds.h"
+#include "core/quadric.h"
 #include "core/transform.h"
 
 namespace kiln {
@@ -23,14 +24,24 @@ struct SphereShape {
   Transform to_world;  // identity for plain spheres; non-uniform scale makes an ellipsoid
 };
 
-enum class ShapeKind : uint8_t { Mesh, Sphere, Instance };
+// A pbrt disk, cylinder or partial sphere (core/quadric.h) placed by to_world. flip: the surface's normal is the
+// opposite of its natural one (pbrt's ReverseOrientation, exclusive-or a transform that mirrors), which makes the
+// other side the emitting one.
+struct QuadricShape {
+  Quadric quadric;
+  Transform to_world;
+  bool flip = false;
+};
+
+enum class ShapeKind : uint8_t { Mesh, Sphere, Instance, Quadric };
 
 // Motion blur: a shape with a non-zero motion is translated by time * motion at a ray's time (Ray::time in [0, 1));
 // its mesh, sphere or instance data describe it at time 0. Accelerators build time-varying geometry for it only.
 struct Shape {
   ShapeKind kind = ShapeKind::Mesh;
-  uint32_t index = 0;  // into meshes (Mesh), spheres (Sphere) or instances (Instance)
+  uint32_t index = 0;  // into meshes (Mesh), spheres (Sphere), instances (Instance) or quadrics (Quadric)
   Vec3f motion{0.0f, 0.0f, 0.0f};
+  bool alpha = false;  // has an alpha cut-out: candidate hits go through WorldGeometry::alpha
   bool moving() const { return motion.x != 0.0f || motion.y != 0.0f || motion.z != 0.0f; }
   Vec3f offset_at(float time) const { return motion * time; }
 };
@@ -40,13 +51,24 @@ struct MeshInstance {
   Transform to_world;
 };
 
+// Alpha cut-outs (pbrt's "alpha"): the accelerators ask the world for the opacity of a shape at a candidate hit,
+// given by its primitive and hit coordinates (a triangle's barycentrics b1, b2; a quadric's surface (u, v)), and keep
+// the hit by pbrt-v4's stochastic rule (renderer/accel/alpha.h). The world evaluates a constant or a texture there;
+// the accelerators know nothing of textures.
+struct AlphaTest {
+  float (*opacity)(const void* world, uint32_t shape, uint32_t prim, Vec2f hit_uv) = nullptr;
+  const void* world = nullptr;
+};
+
 struct WorldGeometry {
   std::vector<Shape> shapes;
   std::vector<TriangleMesh> meshes;      // world space
   std::vector<SphereShape> spheres;
+  std::vector<QuadricShape> quadrics;
   std::vector<TriangleMesh> prototypes;  // object space, used by instances
   std::vector<MeshInstance> instances;
   bool has_motion = false;  // some shape moves: rays carry a time
+  AlphaTest alpha;          // set when some shape has Shape::alpha
   Bounds3f bounds() const;  // over the whole shutter interval
   size_t triangle_count() const;  // counting instanced triangles once per instance
 };

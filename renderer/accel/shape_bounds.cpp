@@ -20,6 +20,16 @@ Bounds3f mesh_bounds(const TriangleMesh& m) {
   return b;
 }
 
+// The transformed corners are rounded to float while hits are computed through the transform in double: a few ulps
+// of padding keep every surface point inside the box.
+Bounds3f quadric_world_bounds(const QuadricShape& q) {
+  Bounds3f b = q.to_world.bounds(q.quadric.bounds());
+  const float pad = 0x1p-20f * std::max(max_component(abs(b.lo)), max_component(abs(b.hi)));
+  b.lo -= Vec3f(pad);
+  b.hi += Vec3f(pad);
+  return b;
+}
+
 Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst) {
   return inst.to_world.bounds(mesh_bounds(g.prototypes[inst.prototype]));
 }
@@ -32,6 +42,8 @@ Bounds3f shape_static_bounds(const WorldGeometry& g, const Shape& s) {
       return sphere_world_bounds(g.spheres[s.index]);
     case ShapeKind::Instance:
       return instance_world_bounds(g, g.instances[s.index]);
+    case ShapeKind::Quadric:
+      return quadric_world_bounds(g.quadrics[s.index]);
   }
   return {};
 }

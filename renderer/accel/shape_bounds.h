@@ -11,6 +11,7 @@ namespace kiln {
 // times the length of row i of the linear part.
 Bounds3f sphere_world_bounds(const SphereShape& s);
 Bounds3f mesh_bounds(const TriangleMesh& m);
+Bounds3f quadric_world_bounds(const QuadricShape& q);
 Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst);
 // At time 0 (shape_static_bounds) and over the whole shutter interval (shape_world_bounds): a translation sweeps
 // a box along a straight line, so the union of its two end boxes bounds every instant.

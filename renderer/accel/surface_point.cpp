@@ -43,6 +43,11 @@ SurfacePoint on_sphere(const SphereShape& s, const Ray& ray, float t) {
             : SurfacePoint{p, dir};
 }
 
+SurfacePoint on_quadric(const QuadricShape& q, const Ray& ray, float t) {
+  const Vec3f p = quadric_object_point(q, ray, t);
+  return {q.to_world.point(p), unit_or_z(quadric_world_normal(q, ray, t)), transformed_extent(q.to_world, p)};
+}
+
 // The shape as it is at time 0, hit by `ray`.
 SurfacePoint static_surface_point(const WorldGeometry& g, const Shape& s, ShapeKind kind, const Ray& ray,
                                   const Hit& hit) {
@@ -59,6 +64,7 @@ SurfacePoint static_surface_point(const WorldGeometry& g, const Shape& s, ShapeK
               transformed_extent(inst.to_world, p_object)};
     }
     case ShapeKind::Sphere: return on_sphere(g.spheres[s.index], ray, hit.t);
+    case ShapeKind::Quadric: return on_quadric(g.quadrics[s.index], ray, hit.t);
   }
   return {};
 }
@@ -99,6 +105,21 @@ Vec3f sphere_world_normal(const SphereShape& s, const Ray& ray, float t) {
   Vec3f o = ray.o, d = ray.d;
   to_object_space(s.to_world.inverse(), o, d);
   return s.to_world.normal(o + d * t - s.center);
+}
+
+}  // namespace kiln
+
+namespace kiln {
+
+Vec3f quadric_object_point(const QuadricShape& q, const Ray& ray, float t) {
+  Vec3f o = ray.o, d = ray.d;
+  to_object_space(q.to_world.inverse(), o, d);
+  return q.quadric.project(o + d * t);
+}
+
+Vec3f quadric_world_normal(const QuadricShape& q, const Ray& ray, float t) {
+  const Vec3f n = q.to_world.normal(q.quadric.normal(quadric_object_point(q, ray, t)));
+  return q.flip ? -n : n;
 }
 
 }  // namespace kiln

@@ -28,4 +28,10 @@ Vec3f triangle_world_normal(const WorldGeometry& g, uint32_t shape, uint32_t pri
 // Unnormalised outward normal, in world space, of a sphere/ellipsoid hit at parameter t of the world-space ray.
 Vec3f sphere_world_normal(const SphereShape& s, const Ray& ray, float t);
 
+// The point of a quadric hit at parameter t of the world-space ray, in the quadric's object space (on its surface).
+Vec3f quadric_object_point(const QuadricShape& q, const Ray& ray, float t);
+// Unnormalised normal, in world space, of a quadric hit at parameter t of the world-space ray: the natural normal
+// (core/quadric.h) through the transform, reversed when QuadricShape::flip is set.
+Vec3f quadric_world_normal(const QuadricShape& q, const Ray& ray, float t);
+
 }  // namespace kiln

@@ -37,7 +37,8 @@ struct RenderArgs {
 };
 
 int cmd_render(const RenderArgs& args);
-int cmd_info(const std::string& scene_path, int subdivide, const std::optional<std::string>& rules);
+// overrides: --rules and --light-sampler.
+int cmd_info(const std::string& scene_path, int subdivide, const RuleOverrides& overrides);
 // Prints block-luminance statistics and MSE / relMSE of image against reference (both EXR) as JSON.
 int cmd_compare(const std::string& image, const std::string& reference, int block);
 

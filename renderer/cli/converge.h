@@ -15,6 +15,9 @@ struct ConvergeArgs {
   std::optional<std::string> camera;     // camera id; the scene's first camera when absent
   std::optional<std::string> reference;  // EXR of the same (scaled) resolution; rendered with mis when absent
   std::string strategies = "uniform,cosine,brdf,nee,nee+rr,mis,mis+rr";
+  // Light samplers (power, uniform, bvh), each strategy measured with each, named STRATEGY/SAMPLER; empty: the
+  // scene's default sampler only, strategies named as given.
+  std::string light_samplers;
   // The study's whole render time, the reference included when it is rendered here (renderer/analysis/convergence_budget.h).
   double budget_seconds = 60;
   int runs = 3;                          // independent runs per strategy (different seeds) for the spread

@@ -44,6 +44,33 @@ struct RenderedReference {
   bool cancelled = false;
 };
 
+struct SamplerWorld {
+  std::string label;  // the sampler's name when --light-samplers was given, else empty
+  std::unique_ptr<World> world;
+};
+
+struct MeasuredStrategy {
+  NamedStrategy strategy;
+  const World* world;
+};
+
+// The scene's world for each light sampler of --light-samplers, or its default world.
+std::vector<SamplerWorld> build_sampler_worlds(const SceneDesc& scene, const ConvergeArgs& args) {
+  WorldOptions wo;
+  wo.accel = args.accel;
+  std::vector<SamplerWorld> worlds;
+  const std::vector<std::string> samplers = split_list(args.light_samplers);
+  for (const std::string& name : samplers)
+    if (!parse_light_sampler(name))
+      throw Error("--light-samplers", "", "unknown light sampler '" + name + "' (power, uniform, bvh)");
+  for (const std::string& name : samplers) {
+    wo.light_sampler = parse_light_sampler(name);
+    worlds.push_back({name, build_world(scene, wo)});
+  }
+  if (worlds.empty()) worlds.push_back({"", build_world(scene, wo)});
+  return worlds;
+}
+
 // The pilot's doubling waves (renderer/render/progressive.h): its spp, time, and the last wave's cost per sample.
 struct Pilot {
   uint32_t spp = 0;
@@ -186,19 +213,24 @@ int cmd_converge(const ConvergeArgs& args) {
     removed_delta = true;
   }
 
-  // Every strategy is one of Kiln's, so the world samples lights with Kiln's exact densities.
-  WorldOptions wo;
-  wo.accel = args.accel;
-  const auto world = build_world(scene, wo);
+  // Every strategy is one of Kiln's, so the world samples lights with Kiln's exact densities; one world per light
+  // sampler (the light sampler is part of the immutable world).
+  const std::vector<SamplerWorld> worlds = build_sampler_worlds(scene, args);
+  const World& first_world = *worlds.front().world;
   const Camera camera(cd);
-  // A strategy of Kiln's path tracer, volumetric when the scene has media.
-  const auto strategy = [&](const std::string& n) {
-    NamedStrategy st = make_strategy(n, base, world->features);
+  // A strategy of Kiln's path tracer for one world, volumetric when the scene has media.
+  const auto strategy = [&](const std::string& n, const World& w) {
+    NamedStrategy st = make_strategy(n, base, w.features);
     st.settings.method = kiln_path_integrator(std::get<PathSettings>(st.settings.method), scene, cd).method;
     return st;
   };
-  std::vector<NamedStrategy> strategies;
-  for (const std::string& n : names) strategies.push_back(strategy(n));
+  std::vector<MeasuredStrategy> strategies;
+  for (const SamplerWorld& sw : worlds)
+    for (const std::string& n : names) {
+      NamedStrategy st = strategy(n, *sw.world);
+      if (!sw.label.empty()) st.name += "/" + sw.label;
+      strategies.push_back({std::move(st), sw.world.get()});
+    }
 
   const InterruptGuard interrupt;
   std::filesystem::create_directories(args.out_dir);
@@ -217,7 +249,7 @@ int cmd_converge(const ConvergeArgs& args) {
     reference_note = "reference " + std::filesystem::path(*args.reference).filename().string();
   } else {
     const RenderedReference r =
-        render_reference(*world, camera, cd.id, strategy("mis"), args,
+        render_reference(first_world, camera, cd.id, strategy("mis", first_world), args,
                          (dir / "reference.exr").string(), interrupt.flag());
     if (r.cancelled) {
       std::fprintf(stderr, "kiln: converge: interrupted while rendering the reference\n");
@@ -237,12 +269,13 @@ int cmd_converge(const ConvergeArgs& args) {
   co.cancel = &interrupt.flag();
   std::vector<ConvergencePoint> points;
   std::vector<StrategySummary> summaries;
-  for (const NamedStrategy& st : strategies) {
+  for (const MeasuredStrategy& ms : strategies) {
     if (interrupt.interrupted()) break;
+    const NamedStrategy& st = ms.strategy;
     if (!args.quiet)
       std::fprintf(stderr, "kiln: converge: %-8s %s, %d run(s), %.1fs\n", st.name.c_str(), st.settings.describe().c_str(),
                    co.runs, co.budget_seconds);
-    const std::vector<ConvergencePoint> p = measure_strategy(*world, camera, st, reference, co);
+    const std::vector<ConvergencePoint> p = measure_strategy(*ms.world, camera, st, reference, co);
     if (p.empty()) continue;
     points.insert(points.end(), p.begin(), p.end());
     summaries.push_back(summarize(p));

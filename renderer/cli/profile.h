@@ -27,6 +27,7 @@ struct ProfileArgs {
   bool no_render = false;
   bool json = false;
   std::optional<std::string> rules;  // kiln | course; default: the scene's own
+  std::optional<std::string> light_sampler;  // power | uniform | bvh (Kiln's rules); default: the scene's
 };
 
 struct RayKindStats {

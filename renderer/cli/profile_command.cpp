@@ -157,11 +157,13 @@ ProfileReport run_profile(const ProfileArgs& args) {
   t = Clock::now();
   RuleOverrides overrides;
   overrides.rules = args.rules;
+  overrides.light_sampler = args.light_sampler;
   const SceneRules rules = resolve_rules(scene, overrides);
   WorldOptions wo;
   wo.accel = args.accel;
   wo.ellipsoid_pdf = ellipsoid_pdf(rules, overrides);
   wo.env_map_sampling = env_map_sampling(rules, overrides);
+  wo.light_sampler = light_sampler_kind(rules, overrides);
   r.scene_desc_bytes = scene_desc_bytes(scene);  // measured before the world takes the arrays over
   const auto world = build_world_taking_meshes(scene, wo);
   const double build_seconds = seconds_since(t);

@@ -63,13 +63,30 @@ nlohmann::json media_stats_json(const TrackingCounters& t) {
           {"majorant_efficiency", t.majorant_efficiency()}};
 }
 
+// Which light sampler next event estimation uses; for the hierarchy its size and build time.
+nlohmann::json light_sampler_json(const WorldStats& s) {
+  if (!s.light_sampler_built) return {{"built", false}};
+  const LightSamplerStats& l = s.light_sampler;
+  nlohmann::json j = {{"built", true}, {"kind", light_sampler_name(l.kind)}, {"build_seconds", l.build_seconds}};
+  if (l.kind == LightSamplerKind::Bvh) {
+    j["emitters"] = l.emitters;
+    j["nodes"] = l.nodes;
+    j["depth"] = l.depth;
+    j["infinite_lights"] = l.infinite_lights;
+    j["bytes"] = l.bytes;
+  }
+  return j;
+}
+
 nlohmann::json world_stats_json(const World& w) {
   const WorldStats& s = w.stats;
   return {{"textures", texture_stats_json(w)},
           {"meshes", s.meshes},
           {"triangles", s.triangles},
           {"spheres", s.spheres},
+          {"quadrics", s.quadrics},
           {"instances", s.instances},
+          {"alpha_shapes", s.alpha_shapes},
           {"interface_shapes_left_out", s.interface_shapes},
           {"media",
            {{"built", !w.media.empty()},
@@ -90,12 +107,13 @@ nlohmann::json world_stats_json(const World& w) {
             {"area", s.area_lights},
             {"mesh", s.mesh_lights},
             {"sphere", s.sphere_lights},
+            {"quadric", s.quadric_lights},
             {"infinite", s.infinite_lights},
             {"environment_map", s.environment_maps}}},
           {"built",
            {{"sphere_geometry", s.sphere_geometry_built},
             {"cone_sampler", s.cone_sampler_built},
-            {"light_selector", s.light_selector_built},
+            {"light_sampler", light_sampler_json(s)},
             // Motion blur: time-varying geometry and a shutter-time sample per camera sample, only when shapes move.
             {"moving_shapes", s.moving_shapes},
             {"time_sample", s.moving_shapes > 0},
@@ -109,9 +127,9 @@ nlohmann::json world_stats_json(const World& w) {
 
 // The options besides the integrator that change a frame's pixels, so that `kiln merge` refuses parts rendered
 // with different ones.
-std::string render_options(const RenderArgs& a) {
+std::string render_options(const RenderArgs& a, const World& w) {
   return "clamp=" + std::to_string(a.rules.clamp) + " physical_lights=" + (a.rules.physical_lights ? "1" : "0") +
-         " subdivide=" + std::to_string(a.subdivide);
+         " subdivide=" + std::to_string(a.subdivide) + " light_sampler=" + light_sampler_name(w.stats.light_sampler.kind);
 }
 
 Crop parse_crop(const std::string& text, int width, int height) {
@@ -206,6 +224,7 @@ LoadedScene load_for_render(const RenderArgs& args) {
   wo.accel = args.accel;
   wo.ellipsoid_pdf = ellipsoid_pdf(l.rules, args.rules);
   wo.env_map_sampling = env_map_sampling(l.rules, args.rules);
+  wo.light_sampler = light_sampler_kind(l.rules, args.rules);
   if (args.aovs) (void)parse_aovs(*args.aovs);  // a bad name fails before the world is built
   l.world = build_world_taking_meshes(l.scene, wo);
   return l;
@@ -316,7 +335,7 @@ Metadata frame_metadata(const RenderArgs& args, const LoadedScene& l, const Came
                    {"kiln:seed", std::to_string(args.seed)},
                    {"kiln:rules", rules_name(l.rules)},
                    {"kiln:integrator", job.settings.describe()},
-                   {"kiln:render_options", render_options(args)},
+                   {"kiln:render_options", render_options(args, *l.world)},
                    {"kiln:render_seconds", std::to_string(r.stats.seconds)},
                    {"kiln:filter", describe_pixel_filter(job.options.filter)},
                    {"kiln:mean_spp", std::to_string(counts.mean)},

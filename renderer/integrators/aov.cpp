@@ -8,7 +8,8 @@ namespace kiln {
 
 // Albedo as denoisers expect it: the material's reflectance colour (diffuse + specular for the course BRDFs, the
 // mirror colour for delta materials, white for glass; pbrt's rough conductor: its normal-incidence Fresnel colour,
-// coated diffuse: its base colour).
+// coated diffuse: its base colour, coated conductor: the conductor's normal-incidence colour under the coat,
+// diffuse transmission: reflectance plus transmittance).
 Rgb material_albedo(const Material& m) {
   const Rgb surface = std::visit(
       [](const auto& b) -> Rgb {
@@ -17,7 +18,9 @@ Rgb material_albedo(const Material& m) {
         else if constexpr (std::is_same_v<T, Lambert>) return b.reflectance;
         else if constexpr (std::is_same_v<T, RoughConductor>) return fresnel_conductor(1.0f, b.ior);
         else if constexpr (std::is_same_v<T, RoughDielectric>) return Rgb(1.0f);
-        else if constexpr (std::is_same_v<T, CoatedDiffuse>) return b.reflectance;
+        else if constexpr (std::is_same_v<T, CoatedDiffuse>) return b.base.reflectance;
+        else if constexpr (std::is_same_v<T, CoatedConductor>) return fresnel_conductor(1.0f, b.base.ior);
+        else if constexpr (std::is_same_v<T, DiffuseTransmission>) return b.reflectance + b.transmittance;
         else return b.kd + b.ks;
       },
       m.surface);
@@ -25,7 +28,7 @@ Rgb material_albedo(const Material& m) {
       [](const auto& d) -> Rgb {
         using T = std::decay_t<decltype(d)>;
         if constexpr (std::is_same_v<T, NoDelta>) return Rgb(0.0f);
-        else if constexpr (std::is_same_v<T, Dielectric>) return Rgb(1.0f);
+        else if constexpr (std::is_same_v<T, Dielectric> || std::is_same_v<T, ThinDielectric>) return Rgb(1.0f);
         else return d.reflectance;
       },
       m.delta);

@@ -130,24 +130,25 @@ struct DirectLight {
   bool delta = false;     // from a light that rays cannot hit: nothing else can find it, so no MIS
 };
 
-// Draws from kLightChoiceDimension and kLightPointDimension of the vertex starting at `dim`. Empty when the light
-// is occluded, faces away or the BSDF does not scatter towards it.
+// Draws from kLightChoiceDimension and kLightPointDimension of the vertex starting at `dim`: the world's light
+// sampler chooses a light (or one triangle of a mesh light), then a point on it. Empty when the light is occluded,
+// faces away or the BSDF does not scatter towards it.
 // time: the path's instant (the shadow ray's).
 inline std::optional<DirectLight> sample_direct_light(const World& w, const SurfaceInteraction& si, const Frame& frame,
                                                       Vec3f wo, Vec3f wo_l, uint32_t dim, float time, Sampler& sampler,
                                                       RayCounters& c) {
   sampler.set_dimension(dim + kLightChoiceDimension);
-  float pmf = 0.0f;
-  const size_t li = w.light_selector.sample(sampler.next_float(), &pmf);
+  const LightQuery q{si.p, si.ns};
+  const auto chosen = w.light_sampler.sample(q, sampler.next_float());
   const Vec2f u = sampler.next_2d();
-  if (!(pmf > 0.0f)) return std::nullopt;
-  const auto ls = sample_li(w.lights[li], LightQuery{si.p, si.ns}, u);
+  if (!chosen) return std::nullopt;
+  const auto ls = sample_li(w.lights[chosen->light], chosen->part, q, u);
   if (!ls || !(ls->pdf > 0.0f) || ls->li.is_black()) return std::nullopt;
   const Vec3f wi_l = frame.to_local(ls->wi);
   if (!consistent_sides(si, wo, ls->wi, wo_l, wi_l)) return std::nullopt;
   const Rgb f = si.material->eval(wo_l, wi_l);
   if (f.is_black() || query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light, time, si.extent), c)) return std::nullopt;
-  const float light_pdf = ls->pdf * pmf;
+  const float light_pdf = ls->pdf * chosen->pmf;
   return DirectLight{f * ls->li * (abs_cos_theta(wi_l) / light_pdf), light_pdf, wi_l, ls->delta};
 }
 
@@ -167,7 +168,7 @@ Rgb escaped_radiance(const World& w, Vec3f d, const LightQuery& from, Weight&& w
   Rgb le(0.0f);
   const Vec3f dir = normalize(d);
   for (const int i : w.infinite_lights) {
-    const float pmf = w.light_selector.pmf(size_t(i));
+    const float pmf = w.light_sampler.pmf(from, uint32_t(i), kWholeLight);
     le += std::visit(
         [&](const auto& light) -> Rgb {
           using L = std::decay_t<decltype(light)>;
@@ -184,9 +185,12 @@ Rgb escaped_radiance(const World& w, Vec3f d, const LightQuery& from, Weight&& w
 }
 
 // Solid-angle density with which next event estimation from `from` would have chosen the point of light `light`
-// that a sampled ray found at si.
+// that a sampled ray found at si (the sampler's choice of the light, or of the triangle holding si, times the
+// density of the point given that choice).
 inline float emitter_pdf(const World& w, int light, const LightQuery& from, const SurfaceInteraction& si) {
-  return pdf_li(w.lights[size_t(light)], from, si.p, si.ng, si.prim) * w.light_selector.pmf(size_t(light));
+  const uint32_t part = w.light_sampler.part(uint32_t(light), si.prim);
+  return pdf_li(w.lights[size_t(light)], part, from, si.p, si.ng, si.prim) *
+         w.light_sampler.pmf(from, uint32_t(light), part);
 }
 
 }  // namespace kiln

@@ -92,6 +92,13 @@ SceneRules resolve_rules(const SceneDesc& scene, const RuleOverrides& o) {
   if (o.course_roulette && rules != SceneRules::Ceng795Course)
     throw Error("--course-roulette", "", "applies to the CENG795 course's rules only");
   if (o.course_roulette) course_roulette_mode(o);  // validate the mode even where no camera uses it
+  if (o.light_sampler) {
+    if (!parse_light_sampler(*o.light_sampler))
+      throw Error("--light-sampler", "", "unknown light sampler '" + *o.light_sampler + "' (power, uniform, bvh)");
+    if (rules != SceneRules::Kiln)
+      throw Error("--light-sampler", "", "applies to Kiln's rules only: the " + std::string(rules_name(rules)) +
+                                             " keep their own light selection (add --rules kiln)");
+  }
   return rules;
 }
 
@@ -103,6 +110,11 @@ EllipsoidPdf ellipsoid_pdf(SceneRules rules, const RuleOverrides& o) {
 EnvMapSampling env_map_sampling(SceneRules rules, const RuleOverrides& o) {
   return rules == SceneRules::Ceng795Course && !o.physical_lights ? EnvMapSampling::UniformHemisphere
                                                                   : EnvMapSampling::ImportanceSampled;
+}
+
+std::optional<LightSamplerKind> light_sampler_kind(SceneRules rules, const RuleOverrides& o) {
+  if (rules != SceneRules::Kiln) return LightSamplerKind::Power;
+  return o.light_sampler ? parse_light_sampler(*o.light_sampler) : std::nullopt;
 }
 
 IntegratorSettings camera_settings(const CameraDesc& camera, const SceneDesc& scene, SceneRules rules,

@@ -27,6 +27,7 @@ struct RuleOverrides {
   std::optional<int> max_depth;                // --max-depth
   std::optional<std::string> course_roulette;  // --course-roulette literal|expected
   bool physical_lights = false;                // --physical-lights: exact light densities under the course's rules
+  std::optional<std::string> light_sampler;    // --light-sampler power|uniform|bvh (Kiln's rules)
   float clamp = 0.0f;                          // --clamp
 };
 
@@ -41,6 +42,11 @@ EllipsoidPdf ellipsoid_pdf(SceneRules rules, const RuleOverrides& overrides);
 // How environment maps are sampled under the rule set: the CENG795 course's uniform hemisphere (pdf 1/2pi, its
 // spec) or Kiln's luminance-proportional importance sampling (also the course's with --physical-lights).
 EnvMapSampling env_map_sampling(SceneRules rules, const RuleOverrides& overrides);
+
+// How next event estimation chooses lights under the rule set: the course rule sets keep the power-proportional
+// selector their references were rendered with; Kiln's rules take --light-sampler, else (empty) the scene's default
+// (lights/light_sampler.h).
+std::optional<LightSamplerKind> light_sampler_kind(SceneRules rules, const RuleOverrides& overrides);
 
 // The integrator and its settings for one camera. features: the world's feature mask.
 IntegratorSettings camera_settings(const CameraDesc& camera, const SceneDesc& scene, SceneRules rules,

@@ -318,22 +318,22 @@ class VolumetricPath {
 
   // ---- light samples ----
 
-  // One light sample from a scattering vertex (next event estimation): the selector's light, a point on it, the
-  // transmittance to it; `connect` evaluates the vertex towards the light (empty: no contribution).
+  // One light sample from a scattering vertex (next event estimation): the world's light sampler's choice (a light
+  // or one triangle of a mesh light), a point on it, the transmittance to it; `connect` evaluates the vertex towards
+  // the light (empty: no contribution).
   template <typename Connect>
   void add_direct_light(const LightQuery& q, uint32_t dim, Connect&& connect) {
     sampler_.set_dimension(dim + kLightChoiceDimension);
-    float pmf = 0.0f;
-    const size_t li = w_.light_selector.sample(sampler_.next_float(), &pmf);
+    const auto chosen = w_.light_sampler.sample(q, sampler_.next_float());
     const Vec2f u = sampler_.next_2d();
-    if (!(pmf > 0.0f)) return;
-    const auto ls = sample_li(w_.lights[li], q, u);
+    if (!chosen) return;
+    const auto ls = sample_li(w_.lights[chosen->light], chosen->part, q, u);
     if (!ls || !(ls->pdf > 0.0f) || ls->li.is_black()) return;
     const std::optional<LightConnection> lc = connect(*ls);
     if (!lc || lc->f.is_black()) return;
     Rgb t_ray(1.0f), r_u(1.0f), r_l(1.0f);
     if (!transmittance(lc->shadow, lc->medium, t_ray, r_u, r_l)) return;
-    r_l *= r_u_ * (ls->pdf * pmf);
+    r_l *= r_u_ * (ls->pdf * chosen->pmf);
     r_u *= r_u_ * lc->scatter_pdf;
     const float denominator = average(ls->delta || !s_.mis ? r_l : r_l + r_u);
     if (denominator > 0.0f) L_ += p_.beta * lc->f * t_ray * ls->li / denominator;

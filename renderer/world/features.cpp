@@ -15,6 +15,9 @@ std::string describe_features(uint32_t mask) {
       {kFeatureTextures, "textures"},       {kFeatureDepthOfField, "depth-of-field"},
       {kFeatureInfiniteLights, "infinite-lights"}, {kFeatureMotionBlur, "motion-blur"},
       {kFeatureEnvironmentMap, "environment-map"},  {kFeatureBackfaceCulling, "backface-culling"},
+      {kFeatureQuadrics, "quadrics"},       {kFeatureQuadricLights, "quadric-lights"},
+      {kFeatureAlpha, "alpha"},
+      {kFeatureMix, "mix"},
       {kFeatureMedia, "media"},
   };
   std::string s;

@@ -25,7 +25,11 @@ enum Feature : uint32_t {
   kFeatureMotionBlur = 1u << 15,      // moving shapes: camera rays take a time sample, accelerators are time-varying
   kFeatureEnvironmentMap = 1u << 16,  // an image-based infinite light (lat-long environment map)
   kFeatureBackfaceCulling = 1u << 17, // camera rays skip triangles facing away from them (course rules)
-  kFeatureMedia = 1u << 18,           // participating media: the volumetric path tracer renders the scene
+  kFeatureQuadrics = 1u << 18,        // pbrt disks, cylinders and partial spheres (user geometry)
+  kFeatureQuadricLights = 1u << 19,   // emitting quadrics
+  kFeatureAlpha = 1u << 20,           // alpha cut-outs: the accelerators test shapes' opacity at candidate hits
+  kFeatureMix = 1u << 21,             // mix materials: each hit chooses one of a mix's components (World::mixes)
+  kFeatureMedia = 1u << 22,           // participating media: the volumetric path tracer renders the scene
   kFeatureAll = 0xffffffffu,
 };
 
@@ -33,11 +37,12 @@ std::string describe_features(uint32_t mask);
 
 // The integrators' specialisation on a scene's mask: calls f.template operator()<kDelta, kDielectric, kMeshesOnly>()
 // (f a lambda with a template parameter list), so that f instantiates its kernel for the parts the scene has.
-// Dielectrics imply delta lobes (smooth interfaces); "meshes only" means no sphere, instance or moving-shape dispatch.
+// Dielectrics imply delta lobes (smooth interfaces); "meshes only" means no sphere, quadric, instance or moving-shape
+// dispatch.
 template <class F>
 decltype(auto) dispatch_on_features(uint32_t features, F&& f) {
   const bool delta = features & kFeatureDelta, dielectric = features & kFeatureDielectric;
-  if (!(features & (kFeatureSpheres | kFeatureInstances | kFeatureMotionBlur))) {
+  if (!(features & (kFeatureSpheres | kFeatureQuadrics | kFeatureInstances | kFeatureMotionBlur))) {
     if (dielectric) return f.template operator()<true, true, true>();
     if (delta) return f.template operator()<true, false, true>();
     return f.template operator()<false, false, true>();

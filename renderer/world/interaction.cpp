@@ -82,8 +82,23 @@ void sphere_texture_frame(const SphereShape& s, SurfaceInteraction& si) {
   }
 }
 
+// pbrt-v4's quadric parametrisation (core/quadric.h): the accelerators report (u, v) in the hit.
+void quadric_texture_frame(const QuadricShape& q, const Ray& ray, const Hit& hit, SurfaceInteraction& si) {
+  si.uv = Vec2f(hit.u, hit.v);
+  Vec3f dpdu, dpdv;
+  q.quadric.derivatives(quadric_object_point(q, ray, hit.t), dpdu, dpdv);
+  dpdu = q.to_world.vector(dpdu);
+  dpdv = q.to_world.vector(dpdv);
+  if (length_squared(cross(dpdu, dpdv)) > 0.0f) {
+    si.dpdu = dpdu;
+    si.dpdv = dpdv;
+  } else {  // the disk's centre, a sphere's pole: any frame around the normal
+    coordinate_system(si.ng, si.dpdu, si.dpdv);
+  }
+}
+
 template <bool kMeshesOnly>
-void texture_frame(const World& world, const ShapeData& sd, const Hit& hit, SurfaceInteraction& si) {
+void texture_frame(const World& world, const ShapeData& sd, const Ray& ray, const Hit& hit, SurfaceInteraction& si) {
   const Shape& shape = world.geometry.shapes[hit.shape];
   const std::vector<Vec2f>* uvs = sd.uvs >= 0 ? &world.uvs[size_t(sd.uvs)] : nullptr;
   const ShapeKind kind = kMeshesOnly ? ShapeKind::Mesh : shape.kind;
@@ -95,6 +110,12 @@ void texture_frame(const World& world, const ShapeData& sd, const Hit& hit, Surf
       break;
     }
     case ShapeKind::Sphere: sphere_texture_frame(world.geometry.spheres[shape.index], si); break;
+    case ShapeKind::Quadric: {
+      Ray back = ray;  // a moving quadric, where the ray found it
+      if (shape.moving()) back.o -= shape.offset_at(ray.time);
+      quadric_texture_frame(world.geometry.quadrics[shape.index], back, hit, si);
+      break;
+    }
   }
 }
 
@@ -112,7 +133,11 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   si.t = hit.t;
   si.shape = hit.shape;
   si.prim = hit.prim;
-  si.material = sd.material >= 0 ? &world.materials[size_t(sd.material)] : nullptr;
+  if (sd.material >= 0) {
+    const int m = world.features & kFeatureMix ? choose_mixed_material(world.mixes, sd.material, si.p, -ray.d)
+                                                : sd.material;
+    si.material = &world.materials[size_t(m)];
+  }
   si.light = sd.light;
   if (sd.normals >= 0) {
     const Vec3f ns = smooth_normal<kMeshesOnly>(world, sd, hit);
@@ -123,7 +148,7 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   }
   if (sd.textures >= 0) {
     si.textures = sd.textures;
-    texture_frame<kMeshesOnly>(world, sd, hit, si);
+    texture_frame<kMeshesOnly>(world, sd, ray, hit, si);
   }
   return si;
 }

@@ -5,7 +5,8 @@
 #include <utility>
 
 #include "core/error.h"
-#include "renderer/image_io/image_io.h"
+#include "renderer/world/alpha_cutouts.h"
+#include "renderer/world/environment_map.h"
 #include "renderer/texture/scene_textures.h"
 #include "renderer/world/world_media.h"
 #include "scenes/material_mapping.h"
@@ -85,15 +86,31 @@ Vec3f shape_motion(World& w, const std::string& name, Vec3f motion, int light) {
   return motion;
 }
 
-// EXR directly, other formats through the OpenImageIO plugin; a file that cannot be read names the scene element.
-Image read_environment_map(const SceneDesc& scene, const EnvLightDesc& env) {
-  try {
-    Image img = read_image(env.image_path);
-    if (img.width() <= 0 || img.height() <= 0) throw Error(env.image_path, "", "the image is empty");
-    return img;
-  } catch (const Error& e) {
-    throw Error(scene.source_path, env.element, std::string("environment map: ") + e.what());
+// A sphere with an alpha cut-out is rendered as a whole-turn quadric sphere: pbrt's (u, v) for its alpha texture.
+QuadricDesc quadric_of_sphere(const SphereDesc& s) {
+  QuadricDesc q;
+  q.name = s.name;
+  q.quadric = *make_quadric(QuadricType::Sphere, s.radius, 0.0f, 0.0f, -s.radius, s.radius, 360.0f).quadric;
+  q.to_world = s.to_world * Transform::translate(s.center);
+  q.material = s.material;
+  q.emission = s.emission;
+  q.motion = s.motion;
+  q.alpha = s.alpha;
+  q.media = s.media;
+  return q;
+}
+
+// Records a shape's alpha cut-out (shape: its index, about to be added). An emitter keeps its surface opaque: its
+// light samples would otherwise fall into the holes.
+void add_alpha(World& w, uint32_t shape, const ShapeAlphaDesc& alpha, int uvs, const std::string& name, bool emits) {
+  if (!alpha.cuts()) return;
+  if (emits) {
+    w.warnings.push_back(name + ": \"alpha\" on an emitting shape is not rendered; the emitter is opaque");
+    return;
   }
+  if (!w.alpha) w.alpha = std::make_unique<AlphaCutouts>();
+  w.alpha->add(shape, ShapeAlpha{alpha, uvs});
+  w.features |= kFeatureAlpha;
 }
 
 AreaLight make_area_light(const AreaLightDesc& d) {
@@ -134,7 +151,9 @@ class WorldBuilder {
     add_media();
     add_meshes();
     add_spheres();
+    add_quadrics();
     add_instances();
+    add_alpha_test();
     const Bounds3f bounds = w_.geometry.bounds();
     w_.scene_radius = bounds.empty() ? 1.0f : std::max(0.5f * bounds.extent(), 1e-6f);
     add_lights();
@@ -151,12 +170,18 @@ class WorldBuilder {
     for (const MaterialDesc& m : scene_.materials) {
       w_.materials.push_back(build_material(m, scene_));
       const Material& built = w_.materials.back();
+      if (m.mix) {  // shades as its components, which are materials of their own
+        ++w_.stats.compiled_materials["mix"];
+        continue;
+      }
       ++w_.stats.compiled_materials[built.describe()];
       if (built.surface_flags() & kLobeGlossy) w_.features |= kFeatureGlossy;
       if (built.has_delta()) w_.features |= kFeatureDelta;
       if (built.oriented()) w_.features |= kFeatureDielectric;
     }
     w_.stats.materials = w_.materials.size();
+    w_.mixes = build_material_mixes(scene_);
+    if (!w_.mixes.empty()) w_.features |= kFeatureMix;
   }
 
   // Only for scenes that have textures; their OpenImageIO TextureSystem only when one is an image.
@@ -240,7 +265,7 @@ class WorldBuilder {
     sd.media = medium_interface(m.media, m.name);
     sd.smooth = m.smooth || !normals.empty();
     sd.textures = bind_textures(m.textures, m.material, m.to_world);
-    if (sd.textures >= 0 && has_uvs) {
+    if (has_uvs && (sd.textures >= 0 || m.alpha.texture >= 0)) {  // alpha textures read uvs too
       sd.uvs = int(w_.uvs.size());
       if (taken) w_.uvs.push_back(std::move(taken->uvs));
       else w_.uvs.push_back(uvs);
@@ -267,6 +292,7 @@ class WorldBuilder {
     w_.stats.triangles += tm.triangle_count();
     ++w_.stats.meshes;
     WorldGeometry& g = w_.geometry;
+    add_alpha(w_, uint32_t(g.shapes.size()), m.alpha, sd.uvs, m.name, sd.light >= 0);
     g.shapes.push_back(Shape{ShapeKind::Mesh, uint32_t(g.meshes.size()), shape_motion(w_, m.name, m.motion, sd.light)});
     g.meshes.push_back(std::move(tm));
     w_.shape_data.push_back(sd);
@@ -278,6 +304,13 @@ class WorldBuilder {
     for (const SphereDesc& s : scene_.spheres) {
       check_material(scene_, s.material, s.name, s.emission.has_value());
       if (invisible(s.material, s.emission, s.media)) continue;
+      if (s.alpha.cuts() && s.radius > 0.0f) {
+        if (!s.emission || s.emission->is_black()) {
+          cut_spheres_.push_back(quadric_of_sphere(s));
+          continue;
+        }
+        add_alpha(w_, 0, s.alpha, -1, s.name, true);  // warns: the emitter stays opaque
+      }
       ShapeData sd;
       sd.material = s.material;
       sd.media = medium_interface(s.media, s.name);
@@ -298,6 +331,30 @@ class WorldBuilder {
     }
     w_.stats.spheres = g.spheres.size();
     w_.stats.sphere_geometry_built = !g.spheres.empty();
+  }
+
+  // pbrt's disks, cylinders and partial spheres, then the spheres that have an alpha cut-out.
+  void add_quadrics() {
+    WorldGeometry& g = w_.geometry;
+    const std::vector<QuadricDesc>& cut_spheres = cut_spheres_;
+    for (const std::vector<QuadricDesc>* list : {&scene_.quadrics, &cut_spheres})
+      for (const QuadricDesc& q : *list) {
+        check_material(scene_, q.material, q.name, q.emission.has_value());
+        if (invisible(q.material, q.emission, q.media)) continue;
+        ShapeData sd;
+        sd.material = q.material;
+        sd.media = medium_interface(q.media, q.name);
+        if (q.emission && !q.emission->is_black())
+          sd.light = add_shape_light(QuadricLight(q.quadric, q.to_world, q.flip, *q.emission, q.two_sided_emission),
+                                     w_.stats.quadric_lights, kFeatureQuadricLights);
+        add_alpha(w_, uint32_t(g.shapes.size()), q.alpha, -1, q.name, sd.light >= 0);
+        g.shapes.push_back(
+            Shape{ShapeKind::Quadric, uint32_t(g.quadrics.size()), shape_motion(w_, q.name, q.motion, sd.light)});
+        g.quadrics.push_back(QuadricShape{q.quadric, q.to_world, q.flip});
+        w_.shape_data.push_back(sd);
+        w_.features |= kFeatureQuadrics;
+      }
+    w_.stats.quadrics = g.quadrics.size();
   }
 
   // Object-space smooth normals and uvs of instanced prototypes, shared by all instances of one prototype.
@@ -327,7 +384,8 @@ class WorldBuilder {
         w_.features |= kFeatureSmoothNormals;
       }
       sd.textures = bind_textures(inst.textures, sd.material, inst.to_world);
-      if (sd.textures >= 0 && !base.uvs.empty() && base.uvs.size() == base.positions.size()) {
+      const bool reads_uvs = sd.textures >= 0 || base.alpha.texture >= 0;
+      if (reads_uvs && !base.uvs.empty() && base.uvs.size() == base.positions.size()) {
         int& pu = prototype_uvs[size_t(proto)];
         if (pu == -1) {
           pu = int(w_.uvs.size());
@@ -335,6 +393,7 @@ class WorldBuilder {
         }
         sd.uvs = pu;
       }
+      add_alpha(w_, uint32_t(g.shapes.size()), base.alpha, sd.uvs, inst.name, false);
       g.shapes.push_back(
           Shape{ShapeKind::Instance, uint32_t(g.instances.size()), shape_motion(w_, inst.name, inst.motion, -1)});
       g.instances.push_back(MeshInstance{uint32_t(proto), inst.to_world});
@@ -345,8 +404,17 @@ class WorldBuilder {
     w_.stats.instances = g.instances.size();
   }
 
+  // The accelerators' alpha test, only when some shape has a cut-out (the others pay nothing).
+  void add_alpha_test() {
+    if (!w_.alpha) return;
+    WorldGeometry& g = w_.geometry;
+    g.alpha = AlphaTest{&AlphaCutouts::opacity, &w_};
+    for (uint32_t i = 0; i < g.shapes.size(); ++i) g.shapes[i].alpha = w_.alpha->has(i);
+    w_.stats.alpha_shapes = w_.alpha->size();
+  }
+
   // The lights that are not shapes (after the shapes: directional and infinite lights need the scene's radius), then
-  // the selector over all of them.
+  // the light sampler over all of them.
   void add_lights() {
     WorldStats& st = w_.stats;
     for (const PointLightDesc& l : scene_.point_lights) add_light(PointLight(l.position, l.intensity), st.point_lights);
@@ -368,13 +436,14 @@ class WorldBuilder {
     }
     for (const EnvLightDesc& l : scene_.env_lights) {
       w_.infinite_lights.push_back(int(w_.lights.size()));
-      add_light(ImageInfiniteLight(read_environment_map(scene_, l), w_.scene_radius, options_.env_map_sampling),
+      add_light(make_environment_light(scene_, l, w_.scene_radius, options_.env_map_sampling, w_.warnings),
                 st.environment_maps);
       w_.features |= kFeatureInfiniteLights | kFeatureEnvironmentMap;
     }
     if (!w_.lights.empty()) {
-      w_.light_selector = LightSelector(w_.lights, options_.light_selection);
-      st.light_selector_built = true;
+      w_.light_sampler = LightSampler(w_.lights, options_.light_sampler.value_or(default_light_sampler(w_.lights)));
+      st.light_sampler_built = true;
+      st.light_sampler = w_.light_sampler.stats();
     }
   }
 
@@ -387,6 +456,7 @@ class WorldBuilder {
   const SceneDesc& scene_;
   const WorldOptions& options_;
   std::vector<std::optional<MeshArrays>>* taken_;
+  std::vector<QuadricDesc> cut_spheres_;  // spheres with an alpha cut-out, built as quadric spheres
   std::unique_ptr<World> world_;
   World& w_;
   std::vector<int> prototype_of_;  // mesh index -> index into WorldGeometry::prototypes, or -1

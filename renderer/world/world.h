@@ -1,18 +1,20 @@
 // The renderable world built from a SceneDesc: geometry for the accelerators, materials, lights and the per-shape
-// data shading needs. Only what the scene uses is built (no sphere data without spheres, no light selector without
+// data shading needs. Only what the scene uses is built (no sphere data without spheres, no light sampler without
 // lights) and WorldStats records what was.
 #pragma once
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "lights/light.h"
-#include "lights/light_selector.h"
+#include "lights/light_sampler.h"
 #include "materials/material.h"
 #include "media/medium.h"
 #include "renderer/accel/accelerator.h"
 #include "renderer/world/features.h"
+#include "renderer/world/material_mix.h"
 #include "renderer/image_io/image_plugin.h"
 #include "renderer/accel/geometry.h"
 #include "scenes/scene.h"
@@ -20,6 +22,7 @@
 namespace kiln {
 
 class SceneTextures;
+class AlphaCutouts;
 
 struct ShapeData {
   int material = -1;
@@ -32,10 +35,11 @@ struct ShapeData {
 };
 
 struct WorldStats {
-  size_t meshes = 0, triangles = 0, spheres = 0, instances = 0;
+  size_t meshes = 0, triangles = 0, spheres = 0, instances = 0, quadrics = 0;
+  size_t alpha_shapes = 0;   // shapes with an alpha cut-out (the accelerators test their opacity)
   size_t moving_shapes = 0;  // MotionBlur: shapes built as time-varying geometry
   size_t point_lights = 0, spot_lights = 0, directional_lights = 0, area_lights = 0, mesh_lights = 0,
-         sphere_lights = 0, infinite_lights = 0, environment_maps = 0;
+         sphere_lights = 0, quadric_lights = 0, infinite_lights = 0, environment_maps = 0;
   size_t materials = 0;
   std::map<std::string, size_t> compiled_materials;  // Material::describe() -> how many materials compiled to it
   size_t interface_shapes = 0;  // shapes left out because their material only marks a boundary (pbrt "interface")
@@ -46,7 +50,8 @@ struct WorldStats {
   std::vector<std::string> media;  // Medium describe(), in World::media order
   bool sphere_geometry_built = false;
   bool cone_sampler_built = false;  // sphere/ellipsoid lights present
-  bool light_selector_built = false;
+  bool light_sampler_built = false;
+  LightSamplerStats light_sampler;  // which sampler, its tree's size and build time
   double build_seconds = 0;
 };
 
@@ -56,12 +61,14 @@ struct World {
   std::vector<std::vector<Vec3f>> normals;      // smooth per-vertex normals
   std::vector<std::vector<Vec2f>> uvs;          // per-vertex texture coordinates of textured meshes
   std::unique_ptr<SceneTextures> textures;      // only for scenes with textures (renderer/texture/scene_textures.h)
+  std::unique_ptr<AlphaCutouts> alpha;          // only for scenes with alpha cut-outs (renderer/world/alpha_cutouts.h)
   std::vector<Material> materials;
+  std::vector<MaterialMix> mixes;  // one per material for scenes with mix materials (kFeatureMix), else empty
   std::vector<Light> lights;
   std::vector<int> infinite_lights;  // indices into lights of what rays that leave the scene see
   // Participating media, built only when a shape bounds one or a camera sits in one (kFeatureMedia).
   std::vector<Medium> media;
-  LightSelector light_selector;
+  LightSampler light_sampler;
   Rgb ambient{0};
   Rgb background{0};
   uint32_t features = 0;
@@ -72,12 +79,14 @@ struct World {
   std::vector<std::string> warnings;  // found while building (e.g. degenerate lights left out)
 
   World();
-  ~World();  // out of line: SceneTextures is incomplete here
+  ~World();  // out of line: SceneTextures and AlphaCutouts are incomplete here
 };
 
 struct WorldOptions {
   AccelKind accel = AccelKind::Embree;
-  LightSelection light_selection = LightSelection::PowerProportional;
+  // How next event estimation chooses lights (the rule set's, renderer/integrators/rules.h); absent: the scene's
+  // default (lights/light_sampler.h default_light_sampler).
+  std::optional<LightSamplerKind> light_sampler;
   bool build_accelerator = true;  // kiln info only needs the description and the feature mask
   EllipsoidPdf ellipsoid_pdf = EllipsoidPdf::Exact;  // the rule set's (renderer/integrators/rules.h)
   EnvMapSampling env_map_sampling = EnvMapSampling::ImportanceSampled;  // the rule set's (renderer/integrators/rules.h)

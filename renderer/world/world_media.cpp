@@ -96,6 +96,8 @@ bool scene_uses_media(const SceneDesc& scene) {
     if (bounds(s.media)) return true;
   for (const InstanceDesc& i : scene.instances)
     if (bounds(i.media)) return true;
+  for (const QuadricDesc& q : scene.quadrics)
+    if (bounds(q.media)) return true;
   return false;
 }
 

@@ -6,9 +6,11 @@
 // PbrtDiagnostics.
 #pragma once
 #include <functional>
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/transform.h"
 #include "scenes/pbrt/diagnostics.h"
@@ -23,6 +25,8 @@ inline constexpr float kPbrtDefaultDielectricEta = 1.5f;
 inline constexpr float kPbrtDefaultSpotConeAngle = 30.0f, kPbrtDefaultSpotConeDelta = 5.0f;
 inline constexpr float kPbrtDefaultCoatThickness = 0.01f;
 inline constexpr int kPbrtDefaultCoatMaxDepth = 10;
+inline constexpr float kPbrtDefaultDiffuseTransmission = 0.25f;  // both "reflectance" and "transmittance"
+inline constexpr float kPbrtDefaultMixAmount = 0.5f;
 
 // Turns a file name written in the scene into a path (throws kiln::Error naming `line` when it cannot be found).
 using PbrtResolve = std::function<std::string(const std::string& name, int line)>;
@@ -33,17 +37,29 @@ struct PbrtAreaLight {
   bool two_sided = false;
 };
 
+// A float "imagemap" texture as shapes' "alpha" reads it (scenes/pbrt/alpha.cpp): the image as a SceneDesc texture
+// (added when a shape first uses it) and the pbrt lookup around it.
+struct PbrtFloatImage {
+  TextureDesc texture;
+  AlphaImageDesc lookup;
+  int scene_texture = -1;  // index into SceneDesc::textures once added
+};
+
 // A named texture (Texture directive).
 struct PbrtTextureDef {
   bool is_float = false;
   std::string cls;
   std::optional<float> value;  // constant float texture
   std::optional<Rgb> rgb;      // constant spectrum texture
+  std::optional<PbrtFloatImage> float_image;  // float imagemap
 };
+
+// A file named in the scene, resolved as Include resolves it (a missing file throws, naming the file and line).
+using PbrtResolver = std::function<std::string(const std::string& name, const PbrtParams& ps)>;
 
 class PbrtBuilder {
  public:
-  explicit PbrtBuilder(SceneDesc& scene) : scene_(scene), diag_(scene) {}
+  PbrtBuilder(SceneDesc& scene, PbrtResolver resolve) : scene_(scene), diag_(scene), resolve_(std::move(resolve)) {}
   PbrtBuilder(const PbrtBuilder&) = delete;
   PbrtBuilder& operator=(const PbrtBuilder&) = delete;
 
@@ -57,9 +73,16 @@ class PbrtBuilder {
   std::optional<int> named_material(const std::string& name) const;
   // pbrt's default material (diffuse, reflectance 0.5), made on first use; `file` names the scene in messages.
   int default_material(const std::string& file);
+  // Once the whole scene is read: the names of "mix" materials' components (error: a missing one, or mixes that
+  // contain each other, at the mix's line).
+  void resolve_mixes();
 
   // Textures (scenes/pbrt/textures.cpp).
   void make_texture(const std::string& name, const std::string& type, const std::string& cls, const PbrtParams& ps);
+
+  // A shape's "alpha" (scenes/pbrt/alpha.cpp): a float, or a float texture (constant or imagemap); other texture
+  // classes are warned and the shape kept opaque. A missing texture or a spectrum texture throws.
+  ShapeAlphaDesc shape_alpha(const PbrtParams& ps);
 
   // Lights (scenes/pbrt/lights.cpp). light_to_world: the transform in effect at the directive.
   void make_light(const std::string& type, const PbrtParams& ps, const Transform& light_to_world);
@@ -79,16 +102,36 @@ class PbrtBuilder {
   const PbrtTextureDef& texture_def(const PbrtParams& ps, const std::string& name) const;
   void texture_not_rendered(const PbrtParams& ps, const std::string& param, const std::string& tex,
                             const PbrtTextureDef& t);
-  void read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm);
-  float interface_eta(const PbrtParams& ps);
+  // "<prefix>roughness", "<prefix>uroughness", "<prefix>vroughness".
+  void read_roughness(const PbrtParams& ps, const std::string& prefix, float& u, float& v);
+  float interface_eta(const PbrtParams& ps, const std::string& name);
+  void read_conductor(const PbrtParams& ps, const std::string& prefix, PbrtMaterialDesc& pm);
+  RgbComplexIor conductor_ior_param(const PbrtParams& ps, const std::string& eta_name, const std::string& k_name);
+  void read_layers(const PbrtParams& ps, PbrtMaterialDesc& pm);
+  void read_mix(const PbrtParams& ps, MaterialDesc& d);
+  std::vector<int> mix_cycle_from(int material) const;
+  std::string material_name(int material) const;
+  PbrtFloatImage read_float_image(const std::string& name, const PbrtParams& ps);
 
   Rgb light_spectrum(const PbrtParams& ps, const std::string& name);
-  void infinite_light(const PbrtParams& ps, float scale);
+  void infinite_light(const PbrtParams& ps, float scale, const Transform& light_to_world);
+  void image_infinite_light(const PbrtParams& ps, const std::string& file, float scale,
+                            const Transform& light_to_world);
 
   SceneDesc& scene_;
   PbrtDiagnostics diag_;
+  PbrtResolver resolve_;
   std::map<std::string, int> named_materials_;
   std::map<std::string, int> named_media_;
+  // A mix whose component names are resolved at the end (they may be defined after it).
+  struct PendingMix {
+    int material;
+    std::array<std::string, 2> names;
+    std::string file, context;
+    int line;
+    std::string where() const { return "line " + std::to_string(line) + " (" + context + ")"; }
+  };
+  std::vector<PendingMix> pending_mixes_;
   std::map<std::string, PbrtTextureDef> textures_;
   int default_material_ = -1;
 };

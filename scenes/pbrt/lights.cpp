@@ -51,7 +51,7 @@ void PbrtBuilder::make_light(const std::string& type, const PbrtParams& ps, cons
     if (!(length(dir) > 0.0f) || !is_finite(dir)) ps.fail(ps.line(), "\"from\" and \"to\" must differ");
     scene_.directional_lights.push_back({normalize(dir), light_spectrum(ps, "L") * s});
   } else if (type == "infinite") {
-    infinite_light(ps, scale);
+    infinite_light(ps, scale, xf);
   } else {
     diag_.warn(ps, "light " + in_quotes(type) + " is not supported; skipped");
     diag_.unsupported("pbrt light " + in_quotes(type));
@@ -60,19 +60,34 @@ void PbrtBuilder::make_light(const std::string& type, const PbrtParams& ps, cons
   diag_.report_unused(ps);
 }
 
-void PbrtBuilder::infinite_light(const PbrtParams& ps, float scale) {
+void PbrtBuilder::infinite_light(const PbrtParams& ps, float scale, const Transform& light_to_world) {
   const auto file = ps.find_string("filename");
-  if (ps.has("portal")) ps.get_point3s("portal");
-  if (file) {
-    diag_.warn(ps, "image-based infinite lights are not rendered yet (" + in_quotes(*file) + ")");
-    diag_.unsupported("image-based infinite lights (pbrt \"infinite\" with \"filename\")");
-    if (ps.has("L")) light_spectrum(ps, "L");
-    if (ps.has("illuminance")) ps.get_float("illuminance", -1.0f);
-    return;
+  if (file && ps.has("L")) ps.fail(ps.line(), "cannot have both \"L\" and \"filename\" (pbrt-v4 refuses it too)");
+  if (ps.has("portal")) {
+    ps.get_point3s("portal");
+    diag_.warn(ps, "\"portal\" is ignored: the light is sampled over the whole sphere (unbiased, only noisier)");
   }
+  if (file) return image_infinite_light(ps, *file, scale, light_to_world);
   float s = scale;
   if (const float e = ps.get_float("illuminance", -1.0f); e > 0.0f) s *= e / kPi;
   scene_.infinite_lights.push_back({light_spectrum(ps, "L") * s});
+}
+
+// pbrt-v4's ImageInfiniteLight: an equal-area square map in the light's frame; non-square 2:1 maps are read as
+// pbrt-v3's lat-long (renderer/world/environment_map.h decides, once the image is read).
+void PbrtBuilder::image_infinite_light(const PbrtParams& ps, const std::string& file, float scale,
+                                       const Transform& light_to_world) {
+  EnvLightDesc env;
+  env.image_path = resolve_(file, ps);
+  // Messages name the scene file first: an included file is named here.
+  env.element = (ps.file() == scene_.source_path ? "" : ps.file() + ": ") + ps.location(ps.line());
+  env.format = EnvMapFormat::EqualArea;
+  env.lat_long_if_not_square = true;
+  env.light_to_world = light_to_world;
+  env.scale = scale;
+  if (const float e = ps.get_float("illuminance", -1.0f); e > 0.0f) env.illuminance = e;
+  scene_.external_files.push_back(env.image_path);
+  scene_.env_lights.push_back(std::move(env));
 }
 
 std::optional<PbrtAreaLight> PbrtBuilder::make_area_light(const std::string& type, const PbrtParams& ps) {

@@ -9,11 +9,17 @@
 //     ReverseOrientation, ObjectBegin/End + ObjectInstance (meshes become Kiln instances of a shared prototype);
 //   * camera, film, sampler and filter: scenes/pbrt/camera.h; Integrator "maxdepth" -> max_recursion_depth
 //     (default 5; pbrt and Kiln count bounces alike);
-//   * shapes: scenes/pbrt/shapes.h; materials into MaterialDesc::pbrt (scenes/scene.h), "diffuse" also as a Kiln
-//     Lambert BRDF; named materials; constant textures (others warned);
-//   * lights: AreaLightSource "diffuse" (L x scale, twosided) on meshes and spheres, LightSource point, spot,
-//     distant (from / to, pbrt's smoothstep spot falloff, "power" / "illuminance" as pbrt normalises them) and
-//     infinite with a constant L (SceneDesc::infinite_lights);
+//   * shapes: scenes/pbrt/shapes.h (meshes, spheres, the quadrics disk / cylinder / partial sphere into
+//     SceneDesc::quadrics, "alpha" cut-outs: scenes/pbrt/alpha.cpp); materials into MaterialDesc::pbrt
+//     (scenes/scene.h): diffuse, conductor, dielectric, thindielectric, coateddiffuse, coatedconductor,
+//     diffusetransmission, interface; "mix" into MaterialDesc::mix, its components named by MakeNamedMaterial before
+//     or after it (resolved at the end of the file); measured, hair and subsurface are warned and rendered as pbrt's
+//     default diffuse; named materials; constant textures (others warned); spectra (named, inline, .spd files,
+//     blackbody) by scenes/pbrt/spectrum.h;
+//   * lights: AreaLightSource "diffuse" (L x scale, twosided) on meshes, spheres and quadrics, LightSource point,
+//     spot, distant (from / to, pbrt's smoothstep spot falloff, "power" / "illuminance" as pbrt normalises them) and
+//     infinite with a constant L (SceneDesc::infinite_lights) or an equal-area image "filename"
+//     (SceneDesc::env_lights, in the light's frame);
 //   * media: MakeNamedMedium into SceneDesc::media (scenes/pbrt/media.cpp), MediumInterface on shapes and the
 //     camera (names resolved when the file ends, so a medium may be named before it is defined).
 // Anything else the file asks for is a warning naming file, line and directive (SceneDesc::warnings) and, when it

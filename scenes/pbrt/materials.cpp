@@ -35,23 +35,76 @@ Rgb PbrtBuilder::spectrum_param(const PbrtParams& ps, const std::string& name, S
 }
 
 
-void PbrtBuilder::read_roughness(const PbrtParams& ps, PbrtMaterialDesc& pm) {
-  const float r = float_param(ps, "roughness", 0.0f);
-  pm.uroughness = ps.has("uroughness") ? float_param(ps, "uroughness", r) : r;
-  pm.vroughness = ps.has("vroughness") ? float_param(ps, "vroughness", r) : r;
-  if (pm.uroughness < 0.0f || pm.vroughness < 0.0f) ps.fail(ps.line(), "roughness must not be negative");
-  pm.remap_roughness = ps.get_bool("remaproughness", true);
+void PbrtBuilder::read_roughness(const PbrtParams& ps, const std::string& prefix, float& u, float& v) {
+  const float r = float_param(ps, prefix + "roughness", 0.0f);
+  u = ps.has(prefix + "uroughness") ? float_param(ps, prefix + "uroughness", r) : r;
+  v = ps.has(prefix + "vroughness") ? float_param(ps, prefix + "vroughness", r) : r;
+  if (u < 0.0f || v < 0.0f) ps.fail(ps.line(), in_quotes(prefix + "roughness") + " must not be negative");
 }
 
-float PbrtBuilder::interface_eta(const PbrtParams& ps) {
+float PbrtBuilder::interface_eta(const PbrtParams& ps, const std::string& name) {
   bool spectral = false;
-  const float eta = ps.find_float_or_spectrum("eta", &spectral).value_or(kPbrtDefaultDielectricEta);
-  if (!(eta > 0.0f)) ps.fail(ps.line(), "\"eta\" must be positive");
+  const float eta = ps.find_float_or_spectrum(name, &spectral).value_or(kPbrtDefaultDielectricEta);
+  if (!(eta > 0.0f)) ps.fail(ps.line(), in_quotes(name) + " must be positive");
   if (spectral) {
-    diag_.warn(ps, "a spectral \"eta\" is rendered without dispersion (eta = " + std::to_string(eta) + ")");
+    diag_.warn(ps, "a spectral " + in_quotes(name) + " is rendered without dispersion (eta = " + std::to_string(eta) + ")");
     diag_.unsupported("dispersion (spectral eta)");
   }
   return eta;
+}
+
+// A conductor's "eta" and "k" (pbrt's default: copper), or its "reflectance"; prefix "conductor." for the base of a
+// coatedconductor. pbrt-v4 rejects "reflectance" together with "eta" or "k".
+void PbrtBuilder::read_conductor(const PbrtParams& ps, const std::string& prefix, PbrtMaterialDesc& pm) {
+  const bool has_ior = ps.has(prefix + "eta") || ps.has(prefix + "k");
+  if (ps.has("reflectance")) {
+    if (has_ior)
+      ps.fail(ps.line(), "gives both \"reflectance\" and " + in_quotes(prefix + "eta") + " / " + in_quotes(prefix + "k") +
+                             " (pbrt-v4 takes one or the other)");
+    pm.conductor_reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(1.0f));
+    return;
+  }
+  const RgbComplexIor ior = conductor_ior_param(ps, prefix + "eta", prefix + "k");
+  pm.conductor_eta = ior.eta;
+  pm.conductor_k = ior.k;
+}
+
+// eta and k given as spectra (or left at pbrt's default, copper's spectra) are reduced together
+// (scenes/pbrt/spectrum.h); an RGB or textured one makes each reduced on its own.
+RgbComplexIor PbrtBuilder::conductor_ior_param(const PbrtParams& ps, const std::string& eta_name,
+                                               const std::string& k_name) {
+  const auto spectral = [&](const std::string& name, std::string_view copper) {
+    return ps.has(name) ? ps.find_piecewise_spectrum(name) : named_spectrum(copper);
+  };
+  const std::optional<PiecewiseSpectrum> eta = spectral(eta_name, "metal-Cu-eta"), k = spectral(k_name, "metal-Cu-k");
+  if (eta && k) return conductor_rgb_ior(*eta, *k);
+  const auto reduced = [&](const std::optional<PiecewiseSpectrum>& s, const std::string& name) {
+    return s ? spectrum_rgb(*s, SpectrumUse::Unbounded) : spectrum_param(ps, name, SpectrumUse::Unbounded, Rgb(1.0f));
+  };
+  return {reduced(eta, eta_name), reduced(k, k_name)};
+}
+
+// The random walk's parameters of coateddiffuse and coatedconductor.
+void PbrtBuilder::read_layers(const PbrtParams& ps, PbrtMaterialDesc& pm) {
+  pm.thickness = float_param(ps, "thickness", kPbrtDefaultCoatThickness);
+  pm.albedo = spectrum_param(ps, "albedo", SpectrumUse::Albedo, Rgb(0.0f));
+  pm.g = float_param(ps, "g", 0.0f);
+  pm.max_depth = ps.get_int("maxdepth", kPbrtDefaultCoatMaxDepth);
+  pm.n_samples = ps.get_int("nsamples", 1);
+  pm.remap_roughness = ps.get_bool("remaproughness", true);
+  if (pm.thickness < 0.0f) ps.fail(ps.line(), "\"thickness\" must not be negative");
+  if (pm.g <= -1.0f || pm.g >= 1.0f) ps.fail(ps.line(), "\"g\" must lie in (-1, 1)");
+  if (pm.max_depth < 1 || pm.n_samples < 1) ps.fail(ps.line(), "\"maxdepth\" and \"nsamples\" must be at least 1");
+}
+
+void PbrtBuilder::read_mix(const PbrtParams& ps, MaterialDesc& d) {
+  const std::vector<std::string> names = ps.get_strings("materials");
+  if (names.size() != 2)
+    ps.fail(ps.line(), "\"materials\" must name two materials, got " + std::to_string(names.size()));
+  MaterialMixDesc mix;
+  mix.amount = float_param(ps, "amount", kPbrtDefaultMixAmount);
+  d.mix = mix;
+  pending_mixes_.push_back({int(scene_.materials.size()), {names[0], names[1]}, ps.file(), ps.context(), ps.line()});
 }
 
 int PbrtBuilder::make_material(const std::string& type, const PbrtParams& ps) {
@@ -74,29 +127,37 @@ int PbrtBuilder::make_material(const std::string& type, const PbrtParams& ps) {
   } else if (type == "coateddiffuse") {
     pm.kind = PbrtMaterialKind::CoatedDiffuse;
     pm.reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(kPbrtDefaultReflectance));
-    read_roughness(ps, pm);
-    pm.thickness = float_param(ps, "thickness", kPbrtDefaultCoatThickness);
-    pm.eta = interface_eta(ps);
-    pm.albedo = spectrum_param(ps, "albedo", SpectrumUse::Albedo, Rgb(0.0f));
-    pm.g = float_param(ps, "g", 0.0f);
-    pm.max_depth = ps.get_int("maxdepth", kPbrtDefaultCoatMaxDepth);
-    pm.n_samples = ps.get_int("nsamples", 1);
-    if (pm.thickness < 0.0f) ps.fail(ps.line(), "\"thickness\" must not be negative");
-    if (pm.g <= -1.0f || pm.g >= 1.0f) ps.fail(ps.line(), "\"g\" must lie in (-1, 1)");
-    if (pm.max_depth < 1 || pm.n_samples < 1) ps.fail(ps.line(), "\"maxdepth\" and \"nsamples\" must be at least 1");
+    read_roughness(ps, "", pm.uroughness, pm.vroughness);
+    pm.eta = interface_eta(ps, "eta");
+    read_layers(ps, pm);
+  } else if (type == "coatedconductor") {
+    pm.kind = PbrtMaterialKind::CoatedConductor;
+    read_roughness(ps, "interface.", pm.uroughness, pm.vroughness);
+    pm.eta = interface_eta(ps, "interface.eta");
+    read_roughness(ps, "conductor.", pm.conductor_uroughness, pm.conductor_vroughness);
+    read_conductor(ps, "conductor.", pm);
+    read_layers(ps, pm);
   } else if (type == "conductor") {
     pm.kind = PbrtMaterialKind::Conductor;
-    if (ps.has("reflectance")) {
-      pm.conductor_reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(1.0f));
-    } else {
-      pm.conductor_eta = spectrum_param(ps, "eta", SpectrumUse::Unbounded, pm.conductor_eta);
-      pm.conductor_k = spectrum_param(ps, "k", SpectrumUse::Unbounded, pm.conductor_k);
-    }
-    read_roughness(ps, pm);
+    read_conductor(ps, "", pm);
+    read_roughness(ps, "", pm.uroughness, pm.vroughness);
+    pm.remap_roughness = ps.get_bool("remaproughness", true);
   } else if (type == "dielectric") {
     pm.kind = PbrtMaterialKind::Dielectric;
-    pm.eta = interface_eta(ps);
-    read_roughness(ps, pm);
+    pm.eta = interface_eta(ps, "eta");
+    read_roughness(ps, "", pm.uroughness, pm.vroughness);
+    pm.remap_roughness = ps.get_bool("remaproughness", true);
+  } else if (type == "thindielectric") {
+    pm.kind = PbrtMaterialKind::ThinDielectric;
+    pm.eta = interface_eta(ps, "eta");
+  } else if (type == "diffusetransmission") {
+    pm.kind = PbrtMaterialKind::DiffuseTransmission;
+    pm.reflectance = spectrum_param(ps, "reflectance", SpectrumUse::Albedo, Rgb(kPbrtDefaultDiffuseTransmission));
+    pm.transmittance = spectrum_param(ps, "transmittance", SpectrumUse::Albedo, Rgb(kPbrtDefaultDiffuseTransmission));
+    pm.scale = ps.get_float("scale", 1.0f);
+    if (!(pm.scale >= 0.0f)) ps.fail(ps.line(), "\"scale\" must not be negative");
+  } else if (type == "mix") {
+    read_mix(ps, d);
   } else if (type == "interface" || type.empty() || type == "none") {
     pm.kind = PbrtMaterialKind::Interface;
   } else {
@@ -106,12 +167,67 @@ int PbrtBuilder::make_material(const std::string& type, const PbrtParams& ps) {
     pm.kind = PbrtMaterialKind::Diffuse;
     pm.reflectance = Rgb(kPbrtDefaultReflectance);
   }
-  d.pbrt = pm;
+  if (!d.mix) d.pbrt = pm;
   diag_.report_unused(ps);
   scene_.materials.push_back(d);
   return int(scene_.materials.size()) - 1;
 }
 
+// Mixes name their components by MakeNamedMaterial names, which may be defined after the mix (pbrt-v4 creates
+// anonymous materials after all named ones): they are resolved once the whole file is read. A missing name, or mixes
+// that contain each other, are errors at the mix's line.
+void PbrtBuilder::resolve_mixes() {
+  for (const PendingMix& pm : pending_mixes_) {
+    MaterialMixDesc& mix = *scene_.materials[size_t(pm.material)].mix;
+    for (size_t i = 0; i < 2; ++i) {
+      const auto it = named_materials_.find(pm.names[i]);
+      if (it == named_materials_.end())
+        throw Error(pm.file, pm.where(), "\"materials\" names " + in_quotes(pm.names[i]) +
+                                             ", which no MakeNamedMaterial defines");
+      mix.materials[i] = it->second;
+    }
+  }
+  for (const PendingMix& pm : pending_mixes_) {
+    const std::vector<int> cycle = mix_cycle_from(pm.material);
+    if (cycle.empty()) continue;
+    std::string path;
+    for (int m : cycle) path += (path.empty() ? "" : " -> ") + in_quotes(material_name(m));
+    throw Error(pm.file, pm.where(), "mix materials contain each other: " + path);
+  }
+}
+
+// The chain of mixes from `start` back to itself, empty when `start` is not on a cycle. Depth-first over the mix
+// graph, whose out-degree is 2.
+std::vector<int> PbrtBuilder::mix_cycle_from(int start) const {
+  std::vector<int> path{start};
+  std::vector<size_t> next_child{0};
+  std::vector<bool> visited(scene_.materials.size(), false);
+  visited[size_t(start)] = true;
+  while (!path.empty()) {
+    const auto& mix = scene_.materials[size_t(path.back())].mix;
+    if (!mix || next_child.back() == 2) {
+      path.pop_back();
+      next_child.pop_back();
+      continue;
+    }
+    const int child = mix->materials[next_child.back()++];
+    if (child == start) {
+      path.push_back(start);
+      return path;
+    }
+    if (child < 0 || visited[size_t(child)]) continue;
+    visited[size_t(child)] = true;
+    path.push_back(child);
+    next_child.push_back(0);
+  }
+  return {};
+}
+
+std::string PbrtBuilder::material_name(int index) const {
+  for (const auto& [name, i] : named_materials_)
+    if (i == index) return name;
+  return "material #" + std::to_string(index + 1);
+}
 
 void PbrtBuilder::make_named_material(const std::string& name, const PbrtParams& ps) {
   if (named_materials_.count(name)) ps.fail(ps.line(), "material " + in_quotes(name) + " is defined twice");

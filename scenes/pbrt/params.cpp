@@ -264,6 +264,11 @@ std::vector<float> PbrtParams::get_floats(std::string_view name) const {
   return p ? p->floats : std::vector<float>{};
 }
 
+std::vector<std::string> PbrtParams::get_strings(std::string_view name) const {
+  const PbrtParam* p = find(name, {PbrtType::String}, "string");
+  return p ? p->strings : std::vector<std::string>{};
+}
+
 std::vector<int64_t> PbrtParams::get_ints(std::string_view name) const {
   const PbrtParam* p = find(name, {PbrtType::Integer}, "integer");
   return p ? p->ints : std::vector<int64_t>{};
@@ -321,46 +326,68 @@ std::optional<Rgb> PbrtParams::find_spectrum(std::string_view name, SpectrumUse 
   const PbrtParam* p = find(name, {PbrtType::Rgb, PbrtType::Spectrum, PbrtType::Blackbody, PbrtType::Texture},
                             "rgb, spectrum or blackbody");
   if (!p || p->type == PbrtType::Texture) return std::nullopt;
+  if (p->type != PbrtType::Rgb) return spectrum_rgb(*piecewise_spectrum(*p), use);
   const std::string what = "parameter " + in_quotes(name);
-  switch (p->type) {
-    case PbrtType::Rgb: {
-      if (p->floats.size() != 3) fail(p->line, what + " takes 3 values, got " + std::to_string(p->count()));
-      const Rgb c(p->floats[0], p->floats[1], p->floats[2]);
-      if (c.has_negative()) fail(p->line, what + ": RGB components must not be negative");
-      if (use == SpectrumUse::Albedo && c.max_component() > 1.0f)
-        fail(p->line, what + ": a reflectance has RGB components at most 1");
-      return c;
-    }
-    case PbrtType::Blackbody: {
-      if (p->floats.size() != 1)
-        fail(p->line, what + " takes one temperature (kelvin), got " + std::to_string(p->count()));
-      const auto c = blackbody_rgb(p->floats[0]);
-      if (!c) fail(p->line, what + ": the temperature must be positive");
-      return *c;
-    }
-    default: break;
+  if (p->floats.size() != 3) fail(p->line, what + " takes 3 values, got " + std::to_string(p->count()));
+  const Rgb c(p->floats[0], p->floats[1], p->floats[2]);
+  if (c.has_negative()) fail(p->line, what + ": RGB components must not be negative");
+  if (use == SpectrumUse::Albedo && c.max_component() > 1.0f)
+    fail(p->line, what + ": a reflectance has RGB components at most 1");
+  return c;
+}
+
+std::optional<PiecewiseSpectrum> PbrtParams::find_piecewise_spectrum(std::string_view name) const {
+  const PbrtParam* p = find(name, {PbrtType::Rgb, PbrtType::Spectrum, PbrtType::Blackbody, PbrtType::Texture},
+                            "rgb, spectrum or blackbody");
+  if (!p || p->type == PbrtType::Texture || p->type == PbrtType::Rgb) return std::nullopt;
+  return piecewise_spectrum(*p);
+}
+
+// A blackbody temperature, a named spectrum, a spectrum file or inline (wavelength, value) pairs.
+std::optional<PiecewiseSpectrum> PbrtParams::piecewise_spectrum(const PbrtParam& p) const {
+  const std::string what = "parameter " + in_quotes(p.name);
+  if (p.type == PbrtType::Blackbody) {
+    if (p.floats.size() != 1) fail(p.line, what + " takes one temperature (kelvin), got " + std::to_string(p.count()));
+    auto s = blackbody_spectrum(p.floats[0]);
+    if (!s) fail(p.line, what + ": the temperature must be positive");
+    return s;
   }
   std::vector<float> pairs;
-  if (!p->strings.empty()) {
-    if (auto named = named_spectrum_rgb(p->strings[0], use)) return *named;
-    const std::filesystem::path path = std::filesystem::path(dir_) / p->strings[0];
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-      fail(p->line, what + ": \"" + p->strings[0] + "\" is neither a named spectrum Kiln knows nor a file");
-    pairs = read_spectrum_file(path.string(), *this, p->line);
+  if (!p.strings.empty()) {
+    if (auto named = named_spectrum(p.strings[0])) return named;
+    pairs = read_spectrum_file(spectrum_file(p), *this, p.line);
   } else {
-    pairs = p->floats;
+    pairs = p.floats;
   }
   if (pairs.size() < 2 || pairs.size() % 2 != 0)
-    fail(p->line, what + ": expected (wavelength, value) pairs, got " + std::to_string(pairs.size()) + " numbers");
-  std::vector<float> lambda(pairs.size() / 2), value(pairs.size() / 2);
-  for (size_t i = 0; i < lambda.size(); ++i) {
-    lambda[i] = pairs[2 * i];
-    value[i] = pairs[2 * i + 1];
-    if (i > 0 && !(lambda[i] > lambda[i - 1])) fail(p->line, what + ": wavelengths must increase");
-    if (value[i] < 0.0f) fail(p->line, what + ": spectrum values must not be negative");
+    fail(p.line, what + ": expected (wavelength, value) pairs, got " + std::to_string(pairs.size()) + " numbers");
+  PiecewiseSpectrum s;
+  for (size_t i = 0; i < pairs.size(); i += 2) {
+    if (!s.lambda_nm.empty() && !(pairs[i] > s.lambda_nm.back())) fail(p.line, what + ": wavelengths must increase");
+    if (pairs[i + 1] < 0.0f) fail(p.line, what + ": spectrum values must not be negative");
+    s.lambda_nm.push_back(pairs[i]);
+    s.values.push_back(pairs[i + 1]);
   }
-  return sampled_spectrum_rgb(lambda, value, use);
+  return s;
+}
+
+// The file a spectrum parameter names, relative to the scene file's folder. A name that is neither a file nor a
+// named spectrum is reported with the nearest known names (unless it looks like a file name: then as a missing
+// file).
+std::string PbrtParams::spectrum_file(const PbrtParam& p) const {
+  const std::string& name = p.strings[0];
+  const std::filesystem::path path = std::filesystem::path(dir_) / name;
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) return path.string();
+  const bool looks_like_file = name.find('/') != std::string::npos || name.find('\\') != std::string::npos ||
+                               std::filesystem::path(name).has_extension();
+  if (looks_like_file)
+    fail(p.line, "parameter " + in_quotes(p.name) + ": cannot read the spectrum file " + in_quotes(path.string()) +
+                     " (no such file)");
+  std::string nearest;
+  for (const std::string& n : nearest_named_spectra(name)) nearest += (nearest.empty() ? "" : ", ") + in_quotes(n);
+  fail(p.line, "parameter " + in_quotes(p.name) + ": " + in_quotes(name) +
+                   " is not a named spectrum (nearest: " + nearest + ") nor a spectrum file");
 }
 
 std::optional<float> PbrtParams::find_float_or_spectrum(std::string_view name, bool* was_spectrum) const {

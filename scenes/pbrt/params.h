@@ -87,9 +87,12 @@ class PbrtParams {
   std::vector<Vec3f> get_normals(std::string_view name) const;
   std::vector<Vec2f> get_point2s(std::string_view name) const;  // also pbrt-v3's "float uv" (pairs)
   std::vector<Rgb> get_rgbs(std::string_view name) const;       // an "rgb" array (a medium's lattice)
+  std::vector<std::string> get_strings(std::string_view name) const;
   // A spectrum: rgb, blackbody, or spectrum (wavelength-value pairs, a named spectrum, or a file of pairs), reduced
   // to RGB for `use` (scenes/pbrt/spectrum.h). Empty when absent or given as a texture (see find_texture).
   std::optional<Rgb> find_spectrum(std::string_view name, SpectrumUse use) const;
+  // The spectrum itself when given as a spectrum or blackbody (empty when absent, RGB or a texture).
+  std::optional<PiecewiseSpectrum> find_piecewise_spectrum(std::string_view name) const;
   // A float that may also be written as a spectrum (a dielectric's eta): the spectrum's green channel.
   std::optional<float> find_float_or_spectrum(std::string_view name, bool* was_spectrum = nullptr) const;
   // The texture name when the parameter is given as "texture NAME".
@@ -110,6 +113,8 @@ class PbrtParams {
   const PbrtParam* find_one(std::string_view name, std::initializer_list<PbrtType> accepted,
                             const char* expected) const;
   std::vector<float> numbers(std::string_view name, PbrtType type, size_t arity) const;
+  std::optional<PiecewiseSpectrum> piecewise_spectrum(const PbrtParam& p) const;
+  std::string spectrum_file(const PbrtParam& p) const;
 
   std::string file_, context_, dir_ = ".";
   int line_ = 0;

@@ -55,6 +55,7 @@ struct Block {
 struct ObjectDef {
   std::vector<int> meshes;  // into SceneDesc::meshes (invisible prototypes)
   std::vector<SphereDesc> spheres;
+  std::vector<QuadricDesc> quadrics;
 };
 
 struct OpenFile {
@@ -605,6 +606,8 @@ class PbrtParser {
   }
 
   void finish() {
+    include_trace_.clear();  // every file is closed: errors from here on name their own file and line
+    builder_.resolve_mixes();
     const std::string end = "line " + std::to_string(root_end_line_);
     if (current_object_)
       throw Error(root_path_, end,
@@ -642,6 +645,7 @@ class PbrtParser {
     for (MeshDesc& m : scene_.meshes) resolve_interface(m.media);
     for (SphereDesc& sp : scene_.spheres) resolve_interface(sp.media);
     for (InstanceDesc& inst : scene_.instances) resolve_interface(inst.media);
+    for (QuadricDesc& q : scene_.quadrics) resolve_interface(q.media);
     for (CameraDesc& c : scene_.cameras) c.medium = resolve_medium(c.medium);
     if (!scene_.media.empty() && integrator_ == "path")
       diag_.warn(integrator_file_, integrator_line_, "Integrator",
@@ -655,7 +659,8 @@ class PbrtParser {
     const std::string type = read_string(cur, line, "Shape");
     PbrtParams ps = read_params(cur, line, "Shape " + in_quotes(type), gs_.defaults.shape);
     require_world(line, "Shape");
-    const PbrtShapeContext ctx{diag_, [&](const std::string& name, int l) { return resolve(name, l, ps.context()); }};
+    const PbrtShapeContext ctx{diag_, [&](const std::string& name, int l) { return resolve(name, l, ps.context()); },
+                               [&](const PbrtParams& p) { return builder_.shape_alpha(p); }};
     PbrtShape s = make_pbrt_shape(type, ps, ctx);
     diag_.report_unused(ps);
     if (s.empty()) return;
@@ -683,6 +688,19 @@ class PbrtParser {
         objects_[*current_object_].meshes.push_back(int(scene_.meshes.size()));
       }
       scene_.meshes.push_back(std::move(m));
+      return;
+    }
+    if (s.quadric) {
+      QuadricDesc& q = *s.quadric;
+      q.material = material;
+      q.to_world = to_world;
+      q.flip = flipped;
+      q.media = gs_.media;  // the quadric's normal is pbrt's (flip included), so its sides are pbrt's
+      if (light) {
+        q.emission = light->radiance;
+        q.two_sided_emission = light->two_sided;
+      }
+      (current_object_ ? objects_[*current_object_].quadrics : scene_.quadrics).push_back(q);
       return;
     }
     SphereDesc sp = *s.sphere;
@@ -757,12 +775,19 @@ class PbrtParser {
       s.name = label + " " + s.name;
       scene_.spheres.push_back(s);
     }
+    for (QuadricDesc q : it->second.quadrics) {
+      q.to_world = placement * q.to_world;
+      q.name = label + " " + q.name;
+      scene_.quadrics.push_back(q);
+    }
   }
 
   // ---- state ----
 
   SceneDesc scene_;
-  PbrtBuilder builder_{scene_};
+  PbrtBuilder builder_{scene_, [this](const std::string& name, const PbrtParams& ps) {
+                         return resolve(name, ps.line(), ps.context());
+                       }};
   PbrtDiagnostics& diag_ = builder_.diagnostics();
   std::string root_path_, root_dir_, include_trace_;
   std::vector<OpenFile> files_;

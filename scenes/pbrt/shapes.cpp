@@ -133,18 +133,28 @@ MeshDesc ply_mesh(const PbrtParams& ps, const std::string& name, const PbrtShape
   return m;
 }
 
-SphereDesc sphere(const PbrtParams& ps, const std::string& name, PbrtDiagnostics& diag) {
-  SphereDesc s;
-  s.name = name;
-  s.radius = ps.get_float("radius", 1.0f);
-  if (!(s.radius > 0.0f)) ps.fail(ps.line(), "\"radius\" must be positive");
-  const float zmin = ps.get_float("zmin", -s.radius), zmax = ps.get_float("zmax", s.radius);
-  const float phimax = ps.get_float("phimax", 360.0f);
-  if (zmin > -s.radius || zmax < s.radius || phimax < 360.0f) {
-    diag.warn(ps, "partial spheres (zmin / zmax / phimax) are not supported; the full sphere is rendered");
-    diag.unsupported("partial spheres (pbrt zmin / zmax / phimax)");
+QuadricDesc quadric(const PbrtParams& ps, const std::string& name, QuadricType type, float radius, float inner,
+                    float height, float z_min, float z_max) {
+  const QuadricOrError q = make_quadric(type, radius, inner, height, z_min, z_max, ps.get_float("phimax", 360.0f));
+  if (!q.quadric) ps.fail(ps.line(), q.error);
+  QuadricDesc d;
+  d.name = name;
+  d.quadric = *q.quadric;
+  return d;
+}
+
+// A whole sphere is a SphereDesc (with its cone sampling as a light); one with cut-aways a quadric.
+void sphere(const PbrtParams& ps, const std::string& name, PbrtShape& out) {
+  const float r = ps.get_float("radius", 1.0f);
+  if (!(r > 0.0f)) ps.fail(ps.line(), "\"radius\" must be positive");
+  const float z_min = ps.get_float("zmin", -r), z_max = ps.get_float("zmax", r);
+  if (std::min(z_min, z_max) > -r || std::max(z_min, z_max) < r || ps.get_float("phimax", 360.0f) < 360.0f) {
+    out.quadric = quadric(ps, name, QuadricType::Sphere, r, 0.0f, 0.0f, z_min, z_max);
+    return;
   }
-  return s;
+  out.sphere = SphereDesc{};
+  out.sphere->name = name;
+  out.sphere->radius = r;
 }
 
 }  // namespace
@@ -161,19 +171,29 @@ PbrtShape make_pbrt_shape(const std::string& type, const PbrtParams& ps, const P
   else if (type == "bilinearmesh")
     out.mesh = bilinear_mesh(ps, name, ctx.diagnostics);
   else if (type == "sphere")
-    out.sphere = sphere(ps, name, ctx.diagnostics);
-  else {
+    sphere(ps, name, out);
+  else if (type == "disk")
+    out.quadric = quadric(ps, name, QuadricType::Disk, ps.get_float("radius", 1.0f), ps.get_float("innerradius", 0.0f),
+                          ps.get_float("height", 0.0f), 0.0f, 0.0f);
+  else if (type == "cylinder")
+    out.quadric = quadric(ps, name, QuadricType::Cylinder, ps.get_float("radius", 1.0f), 0.0f, 0.0f,
+                          ps.get_float("zmin", -1.0f), ps.get_float("zmax", 1.0f));
+  else if (type == "cone" || type == "paraboloid" || type == "hyperboloid") {
+    ctx.diagnostics.warn(ps, "shape \"" + type + "\" is a pbrt-v3 shape that pbrt-v4 does not have; skipped");
+    ctx.diagnostics.unsupported("pbrt-v3 shape \"" + type + "\"");
+    for (const PbrtParam& p : ps.params()) p.used = true;
+    return out;
+  } else {
     ctx.diagnostics.warn(ps, "shape \"" + type + "\" is not supported; skipped");
     ctx.diagnostics.unsupported("pbrt shape \"" + type + "\"");
     for (const PbrtParam& p : ps.params()) p.used = true;  // one warning for the shape, not one per parameter
     return out;
   }
   if (ps.has("alpha")) {
-    const auto tex = ps.find_texture("alpha");
-    if (tex || ps.get_float("alpha", 1.0f) < 1.0f) {
-      ctx.diagnostics.warn(ps, "alpha cut-outs are not rendered; the shape is opaque");
-      ctx.diagnostics.unsupported("alpha cut-outs (pbrt \"alpha\")");
-    }
+    const ShapeAlphaDesc alpha = ctx.alpha(ps);
+    if (out.mesh) out.mesh->alpha = alpha;
+    if (out.sphere) out.sphere->alpha = alpha;
+    if (out.quadric) out.quadric->alpha = alpha;
   }
   return out;
 }

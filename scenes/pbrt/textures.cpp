@@ -33,6 +33,10 @@ void PbrtBuilder::make_texture(const std::string& name, const std::string& type,
     else
       t.rgb = ps.find_spectrum("value", SpectrumUse::Unbounded).value_or(Rgb(1.0f));
     diag_.report_unused(ps);
+  } else if (cls == "imagemap" && t.is_float) {
+    // Rendered where a shape's "alpha" uses it; a material parameter that names it is warned there.
+    t.float_image = read_float_image(name, ps);
+    diag_.report_unused(ps);
   } else {
     for (const PbrtParam& p : ps.params()) p.used = true;
     diag_.warn(ps, "texture class " + in_quotes(cls) + " is not rendered; parameters that use it keep their defaults");

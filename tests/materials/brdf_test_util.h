@@ -1,5 +1,8 @@
 // Helpers shared by the material tests: directions at a given incidence, BRDF factories, sample wrappers.
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <complex>
 #include <optional>
 #include <string>
 
@@ -87,6 +90,25 @@ double simpson(F&& f, double a, double b, int n = 20000) {
   double s = f(a) + f(b);
   for (int i = 1; i < n; ++i) s += f(a + i * h) * (i % 2 ? 4.0 : 2.0);
   return s * h / 3.0;
+}
+
+// Unpolarised Fresnel reflectance of a dielectric from index n_i into n_t, double precision (1 under total internal
+// reflection); cos_i on the side of incidence.
+inline double fresnel_dielectric_ref(double cos_i, double n_i, double n_t) {
+  const double sin_t = n_i / n_t * std::sqrt(std::max(0.0, 1 - cos_i * cos_i));
+  if (sin_t >= 1) return 1;
+  const double cos_t = std::sqrt(1 - sin_t * sin_t);
+  const double rs = (n_i * cos_i - n_t * cos_t) / (n_i * cos_i + n_t * cos_t);
+  const double rp = (n_t * cos_i - n_i * cos_t) / (n_t * cos_i + n_i * cos_t);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+// Unpolarised reflectance of a conductor of complex index n = eta + i k (relative to the incident side).
+inline double fresnel_conductor_ref(double cos_i, std::complex<double> n) {
+  const std::complex<double> cos_t = std::sqrt(1.0 - (1 - cos_i * cos_i) / (n * n));
+  const std::complex<double> rs = (cos_i - n * cos_t) / (cos_i + n * cos_t);
+  const std::complex<double> rp = (n * cos_i - cos_t) / (n * cos_i + cos_t);
+  return 0.5 * (std::norm(rs) + std::norm(rp));
 }
 
 }  // namespace kiln::test

@@ -8,18 +8,14 @@
 //    With a white base and t -> 0 the albedo is R_o + T_o (1 - r_i^K), and the sampler's exit directions
 //    (conditional on leaving diffusely) have the density T(theta_i) cos(theta_i) / (pi (1 - r_e)); its mirror
 //    reflections occur with probability R(theta_o) exactly.
-//  * sample() and eval() estimate the same BSDF: per direction cell, E[path weight of samples in the cell] =
-//    ∫_cell f cos. A two-sample chi-square compares the sampled weights with eval() integrated over each cell at
-//    random points (rough coats, media, grazing incidence), each side with its own estimated variance.
-//  * Energy (albedo <= 1 by both routes), reciprocity of E[f] (independent estimates drawn by perturbing the
-//    directions by ulps), determinism, and that samples report pdf(wo, wi).
+//  * sample() and eval() estimate the same BSDF (the two-sample chi-square of layered_test_util.h: rough coats,
+//    media, grazing incidence).
+//  * Energy (albedo <= 1 by both routes), reciprocity of E[f], determinism, and that samples report pdf(wo, wi).
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "brdf_test_util.h"
-#include "core/sampling.h"
-#include "support/chi2.h"
+#include "layered_test_util.h"
 
 namespace kiln::test {
 namespace {
@@ -29,21 +25,15 @@ constexpr double kSigmas = 4.0;
 
 // ---- Double-precision references ----
 
-double fresnel_ref(double cos_i, double n_i, double n_t) {
-  const double sin_t = n_i / n_t * std::sqrt(std::max(0.0, 1 - cos_i * cos_i));
-  if (sin_t >= 1) return 1;
-  const double cos_t = std::sqrt(1 - sin_t * sin_t);
-  const double rs = (n_i * cos_i - n_t * cos_t) / (n_i * cos_i + n_t * cos_t);
-  const double rp = (n_t * cos_i - n_i * cos_t) / (n_t * cos_i + n_i * cos_t);
-  return 0.5 * (rs * rs + rp * rp);
-}
-double transmit_outside(double cos_o, double eta) { return 1 - fresnel_ref(cos_o, 1, eta); }
+double transmit_outside(double cos_o, double eta) { return 1 - fresnel_dielectric_ref(cos_o, 1, eta); }
 // |cos| of the refracted direction inside.
 double inside_cos(double cos_o, double eta) { return std::sqrt(1 - (1 - cos_o * cos_o) / (eta * eta)); }
 // Cosine-weighted internal reflectance of the coat seen from inside, with the layer's round-trip attenuation.
 double internal_reflectance(double eta, double thickness) {
-  return simpson([&](double mu) { return mu > 0 ? fresnel_ref(mu, eta, 1) * std::exp(-2 * thickness / mu) * 2 * mu : 0; },
-                 0.0, 1.0, 200000);
+  const auto reflected = [&](double mu) {
+    return mu > 0 ? fresnel_dielectric_ref(mu, eta, 1) * std::exp(-2 * thickness / mu) * 2 * mu : 0;
+  };
+  return simpson(reflected, 0.0, 1.0, 200000);
 }
 // 1 - r_e: cosine-weighted transmittance from outside.
 double external_transmittance(double eta) {
@@ -52,30 +42,9 @@ double external_transmittance(double eta) {
 
 CoatedDiffuse coated(Rgb rho, float eta, float alpha, float thickness, Rgb albedo = Rgb(0), float g = 0,
                      int max_depth = 10, int n_samples = 1) {
-  return CoatedDiffuse{rho, RoughDielectric{eta, TrowbridgeReitz(alpha, alpha)}, thickness, albedo, g, max_depth,
-                       n_samples};
-}
-
-// Next representable direction: the same direction for the BSDF, an independent estimate for the hash.
-Vec3f jitter(Vec3f w, int k) {
-  Vec3f v = w;
-  for (int i = 0; i < k; ++i) v.x = std::nextafter(v.x, 2.0f);
-  return v;
-}
-
-struct MeanEstimate {
-  double mean = 0, stderr_ = 0;
-};
-template <class F>
-MeanEstimate mean_of(int n, F&& f) {
-  double s = 0, s2 = 0;
-  for (int i = 0; i < n; ++i) {
-    const double v = f(i);
-    s += v;
-    s2 += v * v;
-  }
-  const double m = s / n;
-  return {m, std::sqrt(std::max(0.0, s2 / n - m * m) / n)};
+  const LayerStack layers{RoughDielectric{eta, TrowbridgeReitz(alpha, alpha)}, thickness, albedo, g, max_depth,
+                          n_samples};
+  return CoatedDiffuse{{layers, Lambert{rho}}};
 }
 
 // ---- Closed forms for the smooth coat ----
@@ -111,34 +80,13 @@ TEST(CoatedDiffuse, SmoothCoatMatchesClosedForm) {
   }
 }
 
-// Directional albedo through sample(): specular and diffuse samples alike (f |cos| / pdf is the path weight).
-MeanEstimate sampled_albedo(const Material& m, Vec3f wo, int n, uint64_t seed) {
-  Rng rng(seed, 5);
-  return mean_of(n, [&](int) {
-    const float uc = rng.next_float();
-    const auto s = m.sample(wo, uc, rng.next_2d());
-    return s ? double(s->f.average()) * std::abs(s->wi.z) / s->pdf : 0.0;
-  });
-}
-
-// Directional albedo through eval(): cosine-weighted directions, f cos / (cos / pi) = pi f. Excludes delta lobes.
-MeanEstimate evaluated_albedo(const Material& m, Vec3f wo, int n, uint64_t seed) {
-  Rng rng(seed, 6);
-  const float flip = wo.z < 0 ? -1.0f : 1.0f;
-  return mean_of(n, [&](int) {
-    Vec3f wi = sample_cosine_hemisphere(rng.next_2d());
-    wi.z *= flip;
-    return wi.z != 0 ? kPiD * double(m.eval(wo, wi).average()) : 0.0;
-  });
-}
-
 TEST(CoatedDiffuse, WhiteFurnaceWithThinSmoothCoat) {
   // R + T (1 - r_i^K): exactly 1 minus what the walk's truncation at max_depth loses (pbrt-v4's behaviour).
   for (int max_depth : {10, 60}) {
     const Material m = surface_material(coated(Rgb(1), 1.5f, 0.0f, 0.0f, Rgb(0), 0, max_depth));
     const double ri = internal_reflectance(1.5, 0.0);
     for (float c : {1.0f, 0.5f, 0.1f, 0.01f}) {
-      const double R = fresnel_ref(c, 1, 1.5);
+      const double R = fresnel_dielectric_ref(c, 1, 1.5);
       const double expected = R + (1 - R) * (1 - std::pow(ri, (max_depth + 1) / 2));
       const MeanEstimate s = sampled_albedo(m, direction_at(c), 200000, 7);
       EXPECT_NEAR(s.mean, expected, kSigmas * s.stderr_ + 1e-6) << "sample, max_depth " << max_depth << " cos " << c;
@@ -158,15 +106,7 @@ TEST(CoatedDiffuse, AlbedoAtMostOne) {
       {"dense_coat", coated(Rgb(1), 2.5f, 0.2f, 0.0f, Rgb(0), 0, 100)},
   };
   uint64_t seed = 200;
-  for (const auto& [name, bxdf] : cases) {
-    const Material m = surface_material(bxdf);
-    for (float c : {1.0f, 0.6f, 0.2f, 0.02f}) {
-      const MeanEstimate s = sampled_albedo(m, direction_at(c), 40000, ++seed);
-      EXPECT_LE(s.mean, 1.0 + kSigmas * s.stderr_) << name << " sample, cos " << c;
-      const MeanEstimate e = evaluated_albedo(m, direction_at(c), 20000, ++seed);
-      EXPECT_LE(e.mean, 1.0 + kSigmas * e.stderr_) << name << " eval, cos " << c;
-    }
-  }
+  for (const auto& [name, bxdf] : cases) expect_albedo_at_most_one(surface_material(bxdf), name, kSigmas, seed);
 }
 
 TEST(CoatedDiffuse, BlackBaseIsTheCoatAlone) {
@@ -174,7 +114,7 @@ TEST(CoatedDiffuse, BlackBaseIsTheCoatAlone) {
   Rng rng(21, 22);
   for (int i = 0; i < 500; ++i) {
     const Vec3f wo = sample_uniform_hemisphere(rng.next_2d()), wi = sample_uniform_hemisphere(rng.next_2d());
-    ASSERT_EQ(m.eval(wo, wi), Rgb(m.coat.f(wo, wi)));
+    ASSERT_EQ(m.eval(wo, wi), Rgb(m.layers.coat.f(wo, wi)));
   }
 }
 
@@ -243,99 +183,16 @@ std::vector<AgreementCase> agreement_cases() {
 }
 constexpr float kAgreementIncidences[] = {0.9f, 0.5f, 0.15f, 0.02f};
 
-// One direction cell (or a pool of cells) of the two-sample comparison.
-struct CellTally {
-  double count = 0, sum = 0, sum2 = 0;  // sampled path weights landing in the cell
-  double evaluated = 0, evaluated_var = 0;  // ∫_cell f cos from eval() at random points, and its variance
-  void add(const CellTally& o) {
-    count += o.count;
-    sum += o.sum;
-    sum2 += o.sum2;
-    evaluated += o.evaluated;
-    evaluated_var += o.evaluated_var;
-  }
-};
-
 TEST(CoatedDiffuse, SampleAndEvalEstimateTheSameBsdf) {
-  constexpr int kCosBins = 8, kPhiBins = 12, kSamples = 100000, kEvalsPerCell = 120;
-  // The normal approximation of a cell's weighted sum needs a few dozen samples: cells are pooled (in order of
-  // their evaluated integral, smallest first) until the pool holds this many.
-  constexpr double kMinSamplesPerPool = 50;
   const int num_tests = int(agreement_cases().size() * std::size(kAgreementIncidences));
   uint64_t seed = 1000;
   for (const AgreementCase& ac : agreement_cases()) {
-    const Material m = surface_material(ac.bxdf);
     for (float c : kAgreementIncidences) {
-      const Vec3f wo = direction_at(c, 0.4);
-      auto cell_of = [&](Vec3f w) {
-        const int ci = std::clamp(int(w.z * kCosBins), 0, kCosBins - 1);
-        double phi = std::atan2(double(w.y), double(w.x));
-        if (phi < 0) phi += 2 * kPiD;
-        const int pj = std::clamp(int(phi / (2 * kPiD) * kPhiBins), 0, kPhiBins - 1);
-        return ci * kPhiBins + pj;
-      };
-      const int n_cells = kCosBins * kPhiBins;
-      std::vector<CellTally> cells(n_cells);
-      Rng rng(++seed, 1);
-      for (int i = 0; i < kSamples; ++i) {
-        const float uc = rng.next_float();
-        const auto s = m.sample(wo, uc, rng.next_2d());
-        if (!s || s->is_specular()) continue;
-        ASSERT_GT(s->wi.z, 0.0f);
-        const double w = double(s->f.average()) * s->wi.z / s->pdf;
-        CellTally& t = cells[cell_of(s->wi)];
-        t.count += 1;
-        t.sum += w;
-        t.sum2 += w * w;
-      }
-      const double cell_area = (1.0 / kCosBins) * (2 * kPiD / kPhiBins);  // in cos(theta)-phi, dw = dcos dphi
-      for (int k = 0; k < n_cells; ++k) {
-        const int ci = k / kPhiBins, pj = k % kPhiBins;
-        const MeanEstimate b = mean_of(kEvalsPerCell, [&](int) {
-          const double z = (ci + rng.next_float()) / kCosBins;
-          const double phi = (pj + rng.next_float()) * 2 * kPiD / kPhiBins;
-          const double sz = std::sqrt(std::max(0.0, 1 - z * z));
-          const Vec3f wi(float(sz * std::cos(phi)), float(sz * std::sin(phi)), float(z));
-          return cell_area * double(m.eval(wo, wi).average()) * wi.z;
-        });
-        cells[k].evaluated = b.mean;
-        cells[k].evaluated_var = b.stderr_ * b.stderr_;
-      }
-      std::sort(cells.begin(), cells.end(), [](const CellTally& a, const CellTally& b) { return a.evaluated < b.evaluated; });
-      std::vector<CellTally> pools;
-      CellTally open;
-      for (const CellTally& t : cells) {
-        open.add(t);
-        if (open.count >= kMinSamplesPerPool) {
-          pools.push_back(open);
-          open = CellTally{};
-        }
-      }
-      if (pools.empty()) pools.push_back(open);
-      else pools.back().add(open);
-
-      double stat = 0;
-      int dof = 0;
-      std::string worst;
-      double worst_term = -1;
-      for (const CellTally& t : pools) {
-        const double a = t.sum / kSamples;
-        const double var_a = std::max(0.0, t.sum2 / kSamples - a * a) / kSamples;
-        const double var = var_a + t.evaluated_var;
-        if (!(var > 0)) continue;
-        const double term = (a - t.evaluated) * (a - t.evaluated) / var;
-        stat += term;
-        ++dof;
-        if (term > worst_term) {
-          worst_term = term;
-          worst = "pool of " + std::to_string(int(t.count)) + " samples: sampled " + std::to_string(a) +
-                  ", evaluated " + std::to_string(t.evaluated) + ", term " + std::to_string(term);
-        }
-      }
-      ASSERT_GT(dof, 10) << ac.name << " cos " << c;
-      const double p = detail::chi2_survival(stat, dof);
-      EXPECT_GE(p, detail::sidak_threshold(0.01, num_tests))
-          << ac.name << " cos " << c << ": chi2 " << stat << " dof " << dof << " p " << p << "; worst " << worst;
+      const AgreementResult r = sample_eval_agreement(surface_material(ac.bxdf), direction_at(c, 0.4), ++seed);
+      ASSERT_GT(r.dof, 10) << ac.name << " cos " << c;
+      EXPECT_GE(r.p_value, detail::sidak_threshold(0.01, num_tests)) << ac.name << " cos " << c << ": chi2 "
+                                                                      << r.statistic << " dof " << r.dof << " p "
+                                                                      << r.p_value << "; worst " << r.worst;
     }
   }
 }
@@ -347,7 +204,7 @@ TEST(CoatedDiffuse, PbrtV4ExitWeightOverestimates) {
   const Vec3f wo = direction_at(0.9, 0.4);
   const MeanEstimate sampled = sampled_albedo(surface_material(bxdf), wo, 200000, 81);
   const MeanEstimate consistent = evaluated_albedo(surface_material(bxdf), wo, 200000, 82);
-  bxdf.exit_weight = LayeredExitWeight::PbrtV4;
+  bxdf.layers.exit_weight = LayeredExitWeight::PbrtV4;
   const MeanEstimate pbrt = evaluated_albedo(surface_material(bxdf), wo, 200000, 83);
   EXPECT_NEAR(consistent.mean, sampled.mean, kSigmas * std::hypot(consistent.stderr_, sampled.stderr_));
   EXPECT_GT(pbrt.mean, 1.05 * sampled.mean) << "pbrt " << pbrt.mean << " sampled " << sampled.mean;
@@ -356,19 +213,8 @@ TEST(CoatedDiffuse, PbrtV4ExitWeightOverestimates) {
 // ---- Reciprocity, determinism, consistency ----
 
 TEST(CoatedDiffuse, ExpectedValueIsReciprocal) {
-  constexpr int kEstimates = 400;
-  for (const AgreementCase& ac : agreement_cases()) {
-    Rng rng(41, 42);
-    for (int pair = 0; pair < 4; ++pair) {
-      const Vec3f a = direction_at(0.1 + 0.85 * rng.next_float(), 6.28 * rng.next_float());
-      const Vec3f b = direction_at(0.1 + 0.85 * rng.next_float(), 6.28 * rng.next_float());
-      const MeanEstimate ab = mean_of(kEstimates, [&](int k) { return double(ac.bxdf.eval(jitter(a, k), b).average()); });
-      const MeanEstimate ba = mean_of(kEstimates, [&](int k) { return double(ac.bxdf.eval(jitter(b, k), a).average()); });
-      const double se = std::sqrt(ab.stderr_ * ab.stderr_ + ba.stderr_ * ba.stderr_);
-      // 24 comparisons: 4.5 sigma keeps the suite's false alarm rate near 1e-4.
-      EXPECT_NEAR(ab.mean, ba.mean, 4.5 * se + 1e-6 * ab.mean) << ac.name << " pair " << pair;
-    }
-  }
+  // 24 comparisons at 4.5 sigma keep the suite's false alarm rate near 1e-4.
+  for (const AgreementCase& ac : agreement_cases()) expect_reciprocal(ac.bxdf, ac.name);
 }
 
 TEST(CoatedDiffuse, EstimatesArePureFunctionsOfTheirArguments) {
@@ -396,32 +242,8 @@ TEST(CoatedDiffuse, EstimatesArePureFunctionsOfTheirArguments) {
 
 TEST(CoatedDiffuse, SamplesReportThePdfFunction) {
   for (const AgreementCase& ac : agreement_cases()) {
-    const Material m = surface_material(ac.bxdf);
-    Rng rng(61, 62);
     int diffuse = 0;
-    for (float c : {0.8f, 0.2f, -0.5f}) {
-      const Vec3f wo = direction_at(c, 0.9);
-      for (int i = 0; i < 3000; ++i) {
-        const float uc = rng.next_float();
-        const auto s = m.sample(wo, uc, rng.next_2d());
-        if (!s) continue;
-        ASSERT_GT(s->wi.z * wo.z, 0.0f) << ac.name;  // reflection only, on wo's side (mirrored below)
-        ASSERT_FALSE(s->is_transmission()) << ac.name;
-        if (s->is_specular()) continue;
-        ++diffuse;
-        ASSERT_EQ(s->pdf, m.pdf(wo, s->wi)) << ac.name;
-        ASSERT_TRUE(s->f.is_finite() && !s->f.has_negative()) << ac.name;
-      }
-      // The pdf is positive over wo's hemisphere and 0 across the surface.
-      for (int i = 0; i < 200; ++i) {
-        Vec3f wi = sample_uniform_hemisphere(rng.next_2d());
-        if (wo.z < 0) wi.z = -wi.z;
-        if (wi.z == 0) continue;
-        ASSERT_GT(m.pdf(wo, wi), 0.0f) << ac.name;
-        ASSERT_EQ(m.pdf(wo, -wi), 0.0f) << ac.name;
-        ASSERT_TRUE(m.eval(wo, -wi).is_black()) << ac.name;
-      }
-    }
+    expect_samples_report_pdf(surface_material(ac.bxdf), ac.name, &diffuse);
     EXPECT_GT(diffuse, 1000) << ac.name;
   }
 }

@@ -14,6 +14,7 @@
 #include "renderer/world/camera.h"
 #include "renderer/film/film.h"
 #include "renderer/film/pixel_filter.h"
+#include "renderer/image_io/image_io.h"
 #include "renderer/integrators/integrator.h"
 #include "renderer/render/render.h"
 #include "renderer/integrators/rules.h"
@@ -129,6 +130,22 @@ inline std::vector<RuleCase> default_scene_rule_cases(int res) {
   course_rays.rules = SceneRules::Ceng795Course;
   course_rays.cameras[0].renderer = RendererKind::RayTracing;
   return {{"kiln", kiln}, {"course_path", course_path}, {"course_rays", course_rays}};
+}
+
+// A W x H texture image in the tests' folder: float EXR whose texel (x, y) (y = 0 the top row) is f(x, y).
+template <typename F>
+inline std::string write_test_exr(const std::string& name, int w, int h, F f) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) img.at(x, y) = f(x, y);
+  const std::string path = tmp_dir("textures") + "/" + name;
+  write_exr(path, img, {}, {});
+  return path;
+}
+
+// The angle between two directions, in radians.
+inline float angle_between(Vec3f a, Vec3f b) {
+  return std::acos(std::clamp(dot(normalize(a), normalize(b)), -1.0f, 1.0f));
 }
 
 struct Estimate {

@@ -128,21 +128,21 @@ TEST(PbrtMaterialMapping, CoatedDiffuseCarriesEveryParameter) {
   const Material m = build_material(pbrt_material(d), pbrt_scene());
   ASSERT_TRUE(std::holds_alternative<CoatedDiffuse>(m.surface));
   const CoatedDiffuse& c = std::get<CoatedDiffuse>(m.surface);
-  EXPECT_EQ(c.reflectance, d.reflectance);
-  EXPECT_EQ(c.coat.eta, 1.6f);
-  EXPECT_FLOAT_EQ(c.coat.distribution.alpha_x, std::sqrt(0.025f));
-  EXPECT_EQ(c.thickness, 0.05f);
-  EXPECT_EQ(c.albedo, Rgb(0.3f, 1.0f, 0.0f));
-  EXPECT_EQ(c.g, -0.3f);
-  EXPECT_EQ(c.max_depth, 7);
-  EXPECT_EQ(c.n_samples, 3);
-  EXPECT_EQ(c.exit_weight, LayeredExitWeight::Consistent);
+  EXPECT_EQ(c.base.reflectance, d.reflectance);
+  EXPECT_EQ(c.layers.coat.eta, 1.6f);
+  EXPECT_FLOAT_EQ(c.layers.coat.distribution.alpha_x, std::sqrt(0.025f));
+  EXPECT_EQ(c.layers.thickness, 0.05f);
+  EXPECT_EQ(c.layers.albedo, Rgb(0.3f, 1.0f, 0.0f));
+  EXPECT_EQ(c.layers.g, -0.3f);
+  EXPECT_EQ(c.layers.max_depth, 7);
+  EXPECT_EQ(c.layers.n_samples, 3);
+  EXPECT_EQ(c.layers.exit_weight, LayeredExitWeight::Consistent);
   EXPECT_FALSE(m.has_delta());
   EXPECT_FALSE(m.oriented());
   // pbrt's defaults: a smooth coat, whose mirror reflection is a specular lobe of the surface part.
   const Material def = build_material(pbrt_material(of_kind(PbrtMaterialKind::CoatedDiffuse)), pbrt_scene());
   EXPECT_TRUE(def.flags() & kLobeSpecular);
-  EXPECT_TRUE(std::get<CoatedDiffuse>(def.surface).coat.is_specular());
+  EXPECT_TRUE(std::get<CoatedDiffuse>(def.surface).layers.coat.is_specular());
 }
 
 TEST(PbrtMaterialMapping, InterfacePassesThrough) {

@@ -1,11 +1,14 @@
 #!/usr/bin/python3
-"""Race Kiln against Blender Cycles on the same scene: error against render time, side by side, in one run.
+"""Race Kiln against Blender Cycles (and pbrt-v4) on the same scene: error against render time, side by side, in
+one run.
 
-Needs: Debian's `blender` (Cycles 3.4), `python3-openimageio`, `python3-numpy`; a built Kiln.
+Needs: Debian's `blender` (Cycles 3.4), `python3-openimageio`, `python3-numpy`; a built Kiln; for --pbrt a pbrt-v4
+binary (../shared/tools/peers/pbrt-v4.md).
 
     /usr/bin/python3 race.py --kiln build/release/kiln [--scene cb.json] [--spp 256] [--runs 3]
         [--ref-spp 4096] [--threads 2] [--max-bounces 8] [--work DIR] [--kiln-args "..."]
         [--filter gaussian:0.01] [--adaptive THRESHOLD [--adaptive-min-spp N]]
+        [--pbrt PATH [--pbrt-light-sampler bvh]] [--kiln-alt "..."] [--no-cycles]
 
 Kiln's copy of ../shared/tools/peers/race.py, extended with matched pixel filters, a pixel-by-pixel comparison and
 adaptive sampling (tools/peers/README.md).
@@ -34,6 +37,16 @@ What it does:
 Cycles --filter/--filter-width; Cycles 3.4 offers gaussian and blackman-harris (its box ignores the width).
 Kiln's gaussian subtracts its value at the radius (pbrt-v4) and Cycles' does not: at 0.01 px irrelevant, at 1.5 px
 a ~1% difference at the tails; blackman-harris is the same function in both.
+
+--pbrt PATH: pbrt-v4 races too, the same way: the scene written by scene_to_pbrt.py (pixel centres, maxdepth =
+bounces + 1, its light sampler --pbrt-light-sampler), its own reference at --ref-spp with seed 1000, the rounds'
+seeds, its render time the one its progress bar reports at the end of "Rendering" (parsing and building excluded).
+Fixed-spp races with the default filter only. Its reference is compared with Kiln's by 16-px blocks (pbrt-v4 is
+spectral, so a few percent apart where colours are saturated).
+
+--kiln-alt "ARGS": a second Kiln entrant with these arguments instead of --kiln-args (e.g. "--strategy mis
+--light-sampler power"), raced in the same rounds against Kiln's reference (both converge to the same image), so
+the efficiency ratio of the two Kiln variants is taken in one run. --no-cycles leaves Cycles out.
 
 --adaptive T: both renderers sample adaptively with noise threshold T (Kiln --adaptive T, Cycles
 use_adaptive_sampling with adaptive_threshold T), --spp the maximum, the same minimum (--adaptive-min-spp, 0 =
@@ -66,6 +79,14 @@ def run(cmd, log=None):
     return r.stdout
 
 
+def block_agreement(ref, other):
+    """16-px block means of two references: median and p95 relative difference, mean ratio ref/other."""
+    b1, b2 = blocks(ref).mean(axis=2), blocks(other).mean(axis=2)
+    m = b2 > 1e-3 * b2.mean()
+    rel = np.abs(b1 - b2)[m] / b2[m]
+    return np.median(rel), np.percentile(rel, 95), ref.mean() / other.mean()
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--kiln", required=True)
@@ -77,6 +98,10 @@ def main():
     ap.add_argument("--max-bounces", type=int, default=8, help="Cycles' count; Kiln gets depth = this + 1")
     ap.add_argument("--work", default="race-work")
     ap.add_argument("--kiln-args", default="--strategy mis")
+    ap.add_argument("--kiln-alt", help="a second Kiln entrant with these arguments instead of --kiln-args")
+    ap.add_argument("--no-cycles", action="store_true", help="leave Cycles out of the race")
+    ap.add_argument("--pbrt", help="pbrt-v4 binary: pbrt-v4 races too")
+    ap.add_argument("--pbrt-light-sampler", default="bvh", choices=["bvh", "power", "uniform"])
     ap.add_argument("--filter", default="gaussian:0.01", help="pixel filter of both renderers, NAME[:WIDTH]")
     ap.add_argument("--adaptive", type=float, default=0.0, help="adaptive sampling threshold of both (0: off)")
     ap.add_argument("--adaptive-min-spp", type=int, default=0, help="adaptive minimum spp of both (0: automatic)")
@@ -86,6 +111,8 @@ def main():
         sys.exit("--filter: Cycles 3.4 has gaussian and blackman-harris with a width (its box ignores it)")
     fwidth = float(fwidth) if fwidth else (3.0 if fname == "gaussian" else 1.5)
     ftag = "%s-%g" % (fname, fwidth)
+    if a.pbrt and (a.adaptive > 0 or a.filter != "gaussian:0.01"):
+        sys.exit("--pbrt: fixed-spp races with the default filter (pixel centres) only")
     os.makedirs(a.work, exist_ok=True)
     kiln = os.path.abspath(a.kiln)
     cyc = ["blender", "-b", "--factory-startup", "-t", str(a.threads), "--python",
@@ -101,15 +128,21 @@ def main():
          "--max-bounces", str(a.max_bounces)])
     cam = json.load(open(scene))["camera"]
     res = ["--width", str(cam["width"]), "--height", str(cam["height"])]
+    pbrt_scene = os.path.join(a.work, "scene_%s.pbrt" % a.pbrt_light_sampler)
+    if a.pbrt:
+        run([sys.executable, os.path.join(HERE, "scene_to_pbrt.py"), scene, pbrt_scene, "--max-bounces",
+             str(a.max_bounces), "--light-sampler", a.pbrt_light_sampler])
 
-    def kiln_render(spp, seed, tag, adaptive=0.0):
-        out = os.path.join(a.work, tag)
-        stats = out + ".json"
-        extra = ["--adaptive", str(adaptive), "--adaptive-min-spp", str(a.adaptive_min_spp)] if adaptive > 0 else []
-        run([kiln, "render", xml, "-o", out, "--spp", str(spp), "--threads", str(a.threads), "--seed", str(seed),
-             "-q", "--stats", stats, "--filter", "%s:%g" % (fname, fwidth)] + extra + shlex.split(a.kiln_args))
-        cam = json.load(open(stats))["cameras"][0]
-        return glob.glob(os.path.join(out, "*.exr"))[0], cam["render_seconds"], cam.get("mean_spp", spp)
+    def kiln_renderer(kiln_args):
+        def render(spp, seed, tag, adaptive=0.0):
+            out = os.path.join(a.work, tag)
+            stats = out + ".json"
+            extra = ["--adaptive", str(adaptive), "--adaptive-min-spp", str(a.adaptive_min_spp)] if adaptive > 0 else []
+            run([kiln, "render", xml, "-o", out, "--spp", str(spp), "--threads", str(a.threads), "--seed", str(seed),
+                 "-q", "--stats", stats, "--filter", "%s:%g" % (fname, fwidth)] + extra + shlex.split(kiln_args))
+            cam = json.load(open(stats))["cameras"][0]
+            return glob.glob(os.path.join(out, "*.exr"))[0], cam["render_seconds"], cam.get("mean_spp", spp)
+        return render
 
     def cycles_render(spp, seed, tag, adaptive=0.0):
         out = os.path.join(a.work, tag + ".exr")
@@ -122,41 +155,76 @@ def main():
         # pixel's own count under adaptive sampling: 1.0 everywhere).
         return out, float(re.search(r"CYCLES_RENDER_WALL_S \d+ ([\d.]+)", log).group(1)), float("nan")
 
-    kref_path = os.path.join(a.work, "ref_kiln_%d_%s" % (a.ref_spp, ftag))
-    cref_path = os.path.join(a.work, "ref_cycles_%d_%s.exr" % (a.ref_spp, ftag))
-    if not glob.glob(os.path.join(kref_path, "*.exr")):
-        print("rendering Kiln's reference at %d spp ..." % a.ref_spp, flush=True)
-        kiln_render(a.ref_spp, 1000, os.path.basename(kref_path))
-    if not os.path.exists(cref_path):
-        print("rendering Cycles' reference at %d spp ..." % a.ref_spp, flush=True)
-        cycles_render(a.ref_spp, 1000, os.path.basename(cref_path)[:-4])
-    kref, cref = load(glob.glob(os.path.join(kref_path, "*.exr"))[0]), load(cref_path)
-    bk, bc = blocks(kref), blocks(cref)
-    m = bc.mean(axis=2) > 1e-3 * bc.mean()
-    rel = np.abs(bk.mean(axis=2) - bc.mean(axis=2))[m] / bc.mean(axis=2)[m]
-    print("references agree: 16-px blocks median %.4f, p95 %.4f, mean ratio Kiln/Cycles %.4f"
-          % (np.median(rel), np.percentile(rel, 95), kref.mean() / cref.mean()))
+    def pbrt_render(spp, seed, tag, adaptive=0.0):
+        out = os.path.join(a.work, tag + ".exr")
+        log = run([a.pbrt, "--nthreads", str(a.threads), "--seed", str(seed), "--spp", str(spp), "--outfile", out,
+                   pbrt_scene])
+        # The progress bar ends with the render's elapsed time: "Rendering: [+++...] (19.9s)".
+        times = re.findall(r"Rendering: \[[+ ]*\]\s+\(([\d.]+)s\)", log)
+        if not times:
+            sys.exit("pbrt-v4 printed no render time:\n" + log[-2000:])
+        return out, float(times[-1]), spp
+
+    # name, render(), the tag of its reference, whose reference it is measured against
+    kiln_ref_tag = "ref_kiln_%d_%s" % (a.ref_spp, ftag)
+    entrants = [("Kiln", kiln_renderer(a.kiln_args), kiln_ref_tag)]
+    if a.kiln_alt:
+        entrants.append(("Kiln[%s]" % a.kiln_alt, kiln_renderer(a.kiln_alt), kiln_ref_tag))
+    if not a.no_cycles:
+        entrants.append(("Cycles", cycles_render, "ref_cycles_%d_%s" % (a.ref_spp, ftag)))
+    if a.pbrt:
+        entrants.append(("pbrt-v4", pbrt_render, "ref_pbrt_%s_%d" % (a.pbrt_light_sampler, a.ref_spp)))
+
+    refs = {}
+    for name, render, tag in entrants:
+        if tag in refs:
+            continue
+        found = glob.glob(os.path.join(a.work, tag, "*.exr")) + glob.glob(os.path.join(a.work, tag + ".exr"))
+        if not found:
+            print("rendering %s's reference at %d spp ..." % (name, a.ref_spp), flush=True)
+            found = [render(a.ref_spp, 1000, tag)[0]]
+        refs[tag] = load(found[0])
+    kref = refs[kiln_ref_tag]
+    for name, _, tag in entrants:
+        if tag != kiln_ref_tag:
+            med_rel, p95_rel, ratio = block_agreement(kref, refs[tag])
+            print("references agree, Kiln against %s: 16-px blocks median %.4f, p95 %.4f, mean ratio Kiln/%s %.4f"
+                  % (name, med_rel, p95_rel, name, ratio))
+
     rows = []
     mode = "adaptive %g" % a.adaptive if a.adaptive > 0 else "fixed"
-    print("racing at %d spp (%s), filter %s, %d threads" % (a.spp, mode, a.filter, a.threads), flush=True)
+    print("racing at %d spp (%s), filter %s, %d threads: %s" % (a.spp, mode, a.filter, a.threads,
+                                                               ", ".join(e[0] for e in entrants)), flush=True)
     for i in range(a.runs):
         seed = 11 + i
         tag = "%d_%s_%s_%d" % (a.spp, ftag, "a%g" % a.adaptive if a.adaptive > 0 else "f", seed)
-        kp, kt, kn = kiln_render(a.spp, seed, "kiln_" + tag, a.adaptive)
-        cp, ct, cn = cycles_render(a.spp, seed, "cycles_" + tag, a.adaptive)
-        ki, ci = load(kp), load(cp)
-        km, cm = float(((ki - kref) ** 2).mean()), float(((ci - cref) ** 2).mean())
-        kx, cx = float(((ki - cref) ** 2).mean()), float(((ci - kref) ** 2).mean())
-        rows.append((kt, km, ct, cm, kn, cn, kx, cx))
-        print("round %d: Kiln %.2f s MSE %.3e (%.1f spp) | Cycles %.2f s MSE %.3e | efficiency "
-              "Kiln/Cycles %.2f | cross MSE Kiln vs Cycles' ref %.3e, Cycles vs Kiln's ref %.3e"
-              % (i + 1, kt, km, kn, ct, cm, (cm * ct) / (km * kt), kx, cx), flush=True)
-    kt, km, ct, cm, kn, cn, kx, cx = (float(np.median([r[j] for r in rows])) for j in range(8))
-    print("median of %d: Kiln %.2f s MSE %.3e, Cycles %.2f s MSE %.3e; time ratio Kiln/Cycles %.2f, "
-          "efficiency ratio Kiln/Cycles %.2f" % (a.runs, kt, km, ct, cm, kt / ct, (cm * ct) / (km * kt)))
+        row = []
+        for k, (name, render, ref_tag) in enumerate(entrants):
+            path, t, n = render(a.spp, seed, "%s%d_%s" % (name.split("[")[0].lower(), k, tag), a.adaptive)
+            row.append((t, float(((load(path) - refs[ref_tag]) ** 2).mean()), n, path))
+        rows.append(row)
+        print("round %d: " % (i + 1) + " | ".join("%s %.2f s MSE %.3e" % (e[0], r[0], r[1])
+                                                   for e, r in zip(entrants, row)), flush=True)
+        if not a.no_cycles:
+            ci = [k for k, e in enumerate(entrants) if e[0] == "Cycles"][0]
+            kx = float(((load(row[0][3]) - refs[entrants[ci][2]]) ** 2).mean())
+            cx = float(((load(row[ci][3]) - kref) ** 2).mean())
+            print("         cross MSE Kiln vs Cycles' ref %.3e, Cycles vs Kiln's ref %.3e" % (kx, cx), flush=True)
+    med = [(float(np.median([r[k][0] for r in rows])), float(np.median([r[k][1] for r in rows])),
+            float(np.median([r[k][2] for r in rows]))) for k in range(len(entrants))]
+    kt, km = med[0][0], med[0][1]
+    print("median of %d rounds:" % a.runs)
+    for (name, _, _), (t, m, _) in zip(entrants, med):
+        line = "  %-40s %7.2f s  MSE %.3e  efficiency %.3g" % (name, t, m, 1.0 / (m * t))
+        if name != "Kiln":
+            line += "  | Kiln's efficiency / %s's %.2f (time ratio %.2f)" % (name, (m * t) / (km * kt), kt / t)
+        print(line)
     if a.adaptive > 0:
-        print("adaptive: Kiln's mean spp %.1f (max %d)" % (kn, a.spp))
-    pixel_comparison(kref, cref, None if a.adaptive > 0 else (km, cm, a.spp / a.ref_spp))
+        print("adaptive: Kiln's mean spp %.1f (max %d)" % (med[0][2], a.spp))
+    if not a.no_cycles:
+        ci = [k for k, e in enumerate(entrants) if e[0] == "Cycles"][0]
+        pixel_comparison(kref, refs[entrants[ci][2]],
+                         None if a.adaptive > 0 else (km, med[ci][1], a.spp / a.ref_spp))
 
 
 def pixel_comparison(kref, cref, noise_from):

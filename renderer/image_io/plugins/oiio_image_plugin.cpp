@@ -12,10 +12,18 @@
 namespace kiln {
 namespace {
 
+// The reader is the one the file's extension names. OpenImageIO's open() would, on failure, go on to try every
+// reader it has: the message then names the last format tried instead of the file's, and each reader's libraries
+// set up their thread-local state in this process for nothing.
 bool read_rgb(const std::string& path, std::vector<float>& rgb, int& width, int& height, std::string& error) {
-  auto in = OIIO::ImageInput::open(path);
+  auto in = OIIO::ImageInput::create(path, /*do_open=*/false);
   if (!in) {
     error = OIIO::geterror();
+    return false;
+  }
+  OIIO::ImageSpec opened;
+  if (!in->open(path, opened)) {
+    error = in->geterror();
     return false;
   }
   const OIIO::ImageSpec& spec = in->spec();

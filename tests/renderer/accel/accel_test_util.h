@@ -80,6 +80,23 @@ inline uint32_t add_instance(WorldGeometry& g, uint32_t prototype, Transform to_
   return uint32_t(g.shapes.size() - 1);
 }
 
+inline uint32_t add_quadric(WorldGeometry& g, const Quadric& q, Transform to_world = {}, bool flip = false) {
+  g.quadrics.push_back({q, to_world, flip});
+  g.shapes.push_back({ShapeKind::Quadric, uint32_t(g.quadrics.size() - 1)});
+  return uint32_t(g.shapes.size() - 1);
+}
+
+// camera_ray(i, rng) at a random instant of the shutter (check-bvh's bounce and shadow rays keep their camera ray's
+// time).
+template <class CameraRay>
+auto at_random_instants(CameraRay camera_ray) {
+  return [camera_ray](size_t i, Rng& rng) {
+    Ray r = camera_ray(i, rng);
+    r.time = rng.next_float();
+    return r;
+  };
+}
+
 inline Vec3f random_in(Rng& rng, const Bounds3f& b) {
   return b.lo + b.diagonal() * Vec3f(rng.next_float(), rng.next_float(), rng.next_float());
 }

@@ -50,12 +50,7 @@ TEST(CheckBvh, AgreesOnMovingGeometryAtEveryInstant) {
   int k = 0;
   for (size_t i = 1; i < g.shapes.size(); i += 2) g.shapes[i].motion = motions[k++ % 4];
   g.has_motion = true;
-  const auto timed_ray = [](size_t i, Rng& rng) {
-    Ray r = camera_ray(i, rng);
-    r.time = rng.next_float();
-    return r;
-  };
-  const CheckBvhReport r = check_bvh(g, timed_ray, CheckBvhOptions{});
+  const CheckBvhReport r = check_bvh(g, at_random_instants(camera_ray), CheckBvhOptions{});
   EXPECT_TRUE(r.passed) << r.to_json();
   EXPECT_EQ(r.total_disagreements(), 0u) << r.first_disagreement;
   EXPECT_GT(r.bounce.rays, 50000u);

@@ -136,6 +136,45 @@ TEST_F(CliBadInput, PbrtMissingInclude) {
   expect_bad_input(bad_pbrt("missing_include.pbrt"), "line 4 (Include): cannot find \"geometry/not_there.pbrt\"");
 }
 
+// A pbrt scene of one sphere whose world ends with `world` (from line 6 on).
+std::string pbrt_scene(const std::string& world) {
+  return "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
+         "\"integer yresolution\" 8\nWorldBegin\nShape \"sphere\"\n" +
+         world;
+}
+
+TEST_F(CliBadInput, PbrtMissingOrUnreadableEnvironmentMap) {
+  expect_bad_input(write_file(dir_, "env_missing.pbrt",
+                              pbrt_scene("LightSource \"infinite\" \"string filename\" \"sky_absent.exr\"\n")),
+                   "line 6 (LightSource \"infinite\"): cannot find \"sky_absent.exr\"");
+  write_file(dir_, "junk.exr", "not an image");
+  expect_bad_input(write_file(dir_, "env_junk.pbrt",
+                              pbrt_scene("LightSource \"infinite\" \"string filename\" \"junk.exr\"\n")),
+                   "line 6 (LightSource \"infinite\"): environment map");
+}
+
+TEST_F(CliBadInput, PbrtEnvironmentMapNeitherSquareNorTwoToOne) {
+  Image wide(12, 4);
+  write_exr(dir_ + "/wide.exr", wide, {}, {});
+  expect_bad_input(write_file(dir_, "env_wide.pbrt",
+                              pbrt_scene("LightSource \"infinite\" \"string filename\" \"wide.exr\"\n")),
+                   "line 6 (LightSource \"infinite\"): environment map '");
+  const RunResult r = run_kiln("render " + dir_ + "/env_wide.pbrt -o " + out_ + " -q");
+  EXPECT_NE(r.output.find("is 12 x 4: an equal-area map must be square"), std::string::npos) << r.output;
+}
+
+TEST_F(CliBadInput, PbrtAlphaNamingASpectrumTexture) {
+  expect_bad_input(write_file(dir_, "alpha_spectrum.pbrt",
+                              pbrt_scene("Texture \"c\" \"spectrum\" \"constant\" \"rgb value\" [1 1 1]\n"
+                                         "Shape \"disk\" \"texture alpha\" \"c\"\n")),
+                   "line 7 (Shape \"disk\"): \"alpha\" names texture \"c\", a spectrum texture");
+}
+
+TEST_F(CliBadInput, PbrtNegativeRadius) {
+  expect_bad_input(write_file(dir_, "negative_radius.pbrt", pbrt_scene("Shape \"cylinder\" \"float radius\" -2\n")),
+                   "line 6 (Shape \"cylinder\"): \"radius\" must be positive");
+}
+
 TEST_F(CliBadInput, PbrtWrongParameterType) {
   expect_bad_input(bad_pbrt("wrong_parameter_type.pbrt"),
                    "line 2 (Camera \"perspective\"): parameter \"fov\" is declared \"string\"");
@@ -277,9 +316,9 @@ TEST(Cli, PbrtSceneRendersAndEveryCommandReadsIt) {
 
   const RunResult info = run_kiln("info " + data + "unsupported.pbrt");
   EXPECT_EQ(info.exit_code, 0) << info.output;
-  EXPECT_NE(info.output.find("warning: " + data + "unsupported.pbrt: line 15 (Shape \"disk\")"), std::string::npos)
+  EXPECT_NE(info.output.find("warning: " + data + "unsupported.pbrt: line 15 (Shape \"curve\")"), std::string::npos)
       << info.output;
-  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"disk\""), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("not rendered yet: pbrt shape \"curve\""), std::string::npos) << info.output;
   const RunResult all = run_kiln("info " + data + "all_directives.pbrt");
   EXPECT_NE(all.output.find("infinite 1"), std::string::npos) << all.output;
 

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "renderer/render_util.h"
+#include "renderer/test_scenes.h"
 #include "renderer/image_io/image_io.h"
 
 namespace kiln::test {
@@ -40,19 +40,8 @@ Image sky_map() {
 
 // A Lambertian ball of albedo kAlbedo under the map, filling the view.
 SceneDesc ball_under(const std::string& map) {
-  SceneDesc s = lambertian_scene(kAlbedo, "env.test");
-  SphereDesc ball;
-  ball.name = "ball";
-  ball.radius = 1.0f;
-  ball.material = 0;
-  s.spheres.push_back(ball);
+  SceneDesc s = ball_scene(kAlbedo, "env.test");
   s.env_lights.push_back({map, "SphericalDirectionalLight id=1"});
-  CameraDesc cam;
-  cam.position = {0, 0, 3};
-  cam.use_fov = true;
-  cam.fov_y_deg = 20;
-  cam.width = cam.height = 8;
-  s.cameras.push_back(cam);
   return s;
 }
 

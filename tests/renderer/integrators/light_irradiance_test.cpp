@@ -6,7 +6,7 @@
 #include <cmath>
 #include <functional>
 
-#include "renderer/render_util.h"
+#include "renderer/test_scenes.h"
 
 namespace kiln::test {
 namespace {
@@ -18,39 +18,6 @@ constexpr uint32_t kSamples = 20000;
 // curvature.
 constexpr double kDeltaRelTol = 2e-4;
 constexpr double kMaxZ = 5.0;
-
-// A large Lambertian floor (y = 0, normal +y) seen at the origin by a narrow camera from the side.
-SceneDesc lit_floor() {
-  SceneDesc s = lambertian_scene(kAlbedo);
-  MeshDesc floor;
-  floor.name = "floor";
-  floor.positions = {{-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}};
-  floor.indices = {0, 1, 2, 0, 2, 3};  // (v1-v0)x(v2-v0) = +y
-  floor.material = 0;
-  s.meshes.push_back(floor);
-  CameraDesc cam;
-  cam.id = "1";
-  // 45 degrees above the floor, clear of the area light: the pixels' footprint (5 mm) leaves the irradiance's
-  // curvature below 1e-5 relative.
-  cam.position = {0.0f, 3.0f, 3.0f};
-  cam.gaze = normalize(Vec3f{0.0f, -3.0f, -3.0f});
-  cam.up = {0, 1, 0};
-  cam.use_fov = true;
-  cam.fov_y_deg = 0.05f;
-  cam.width = cam.height = 4;
-  s.cameras.push_back(cam);
-  return s;
-}
-
-// Irradiance at a point from a parallel rectangle a x b at height h with its corner straight above the point
-// (differential-area-to-rectangle form factor, Howell's catalogue C-11) times pi L.
-double corner_rectangle_irradiance(double radiance, double a, double b, double h) {
-  const double x = a / h, y = b / h;
-  const double f = (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
-                    y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
-                   (2 * kPi);
-  return kPi * radiance * f;
-}
 
 struct LightCase {
   const char* name;
@@ -104,7 +71,7 @@ TEST(LightIrradiance, LambertianPlaneMatchesTheClosedForm) {
   kiln.russian_roulette = false;
   CourseRaySettings course;
   for (const LightCase& c : light_cases()) {
-    SceneDesc s = lit_floor();
+    SceneDesc s = lit_floor_scene(kAlbedo);
     c.add(s);
     const auto w = build_world(s, {});
     const double want = kAlbedo / kPi * c.irradiance;

@@ -8,6 +8,7 @@
 //    and pdf()).
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "renderer/render_util.h"
 
 namespace kiln::test {
@@ -52,6 +53,28 @@ TEST(PbrtFurnace, WhiteBaseUnderSmoothCoatGivesDPlusOne) {
   }
 }
 
+// BSDF sampling, NEE, MIS and MIS with roulette give the same one-bounce furnace for each material, at most 2.
+void expect_strategies_agree(const std::vector<std::pair<std::string, PbrtMaterialDesc>>& cases, uint32_t samples) {
+  // One bounce: the NEE-only estimate is then eval() alone against sample() alone for BSDF sampling, with the
+  // least variance from the light sampling of later bounces.
+  constexpr int kDepth = 1;
+  for (const auto& [name, d] : cases) {
+    const SceneDesc scene = pbrt_furnace(d);
+    const auto world = build_world(scene, {});
+    std::vector<Estimate> est;
+    for (const Strategy& st : kStrategies)
+      est.push_back(estimate_mean(*world, strategy(st.nee, st.mis, st.rr, kDepth), scene.cameras[0], samples, 11));
+    for (size_t a = 0; a < est.size(); ++a)
+      for (size_t b = a + 1; b < est.size(); ++b) {
+        const double se = std::hypot(est[a].stderr_, est[b].stderr_);
+        EXPECT_NEAR(est[a].mean, est[b].mean, 4.5 * se) << name << ": " << kStrategies[a].name << " " << est[a].mean
+                                                         << " vs " << kStrategies[b].name << " " << est[b].mean;
+      }
+    // Energy: D bounces of an albedo <= 1 material give at most D + 1.
+    for (const Estimate& e : est) EXPECT_LE(e.mean, kDepth + 1.0 + 4.5 * e.stderr_) << name;
+  }
+}
+
 TEST(PbrtFurnace, StrategiesAgreeOnRoughMaterials) {
   std::vector<std::pair<std::string, PbrtMaterialDesc>> cases;
   PbrtMaterialDesc gold;
@@ -73,23 +96,141 @@ TEST(PbrtFurnace, StrategiesAgreeOnRoughMaterials) {
   medium.albedo = Rgb(0.8f);
   medium.g = 0.4f;
   cases.push_back({"coat_with_medium", medium});
-  // One bounce: the NEE-only estimate is then eval() alone against sample() alone for BSDF sampling, with the
-  // least variance from the light sampling of later bounces.
-  constexpr int kDepth = 1;
-  for (const auto& [name, d] : cases) {
-    const SceneDesc scene = pbrt_furnace(d);
+  expect_strategies_agree(cases, 200000);
+}
+
+TEST(PbrtFurnace, StrategiesAgreeOnCoatedConductors) {
+  std::vector<std::pair<std::string, PbrtMaterialDesc>> cases;
+  PbrtMaterialDesc coated_gold;  // the feature scene's coated gold
+  coated_gold.kind = PbrtMaterialKind::CoatedConductor;
+  coated_gold.conductor_eta = Rgb(0.143f, 0.374f, 1.442f);
+  coated_gold.conductor_k = Rgb(3.983f, 2.385f, 1.603f);
+  coated_gold.uroughness = coated_gold.vroughness = 0.02f;
+  coated_gold.conductor_uroughness = coated_gold.conductor_vroughness = 0.1f;
+  cases.push_back({"coated_gold", coated_gold});
+  PbrtMaterialDesc rough_over_mirror = coated_gold;  // a smooth base: its delta bounce inside a rough coat
+  rough_over_mirror.uroughness = rough_over_mirror.vroughness = 0.2f;
+  rough_over_mirror.conductor_uroughness = rough_over_mirror.conductor_vroughness = 0.0f;
+  cases.push_back({"rough_coat_smooth_gold", rough_over_mirror});
+  expect_strategies_agree(cases, 100000);
+}
+
+// A pane (one open quad) of `material` inside the furnace, facing the camera.
+SceneDesc furnace_with_pane(const PbrtMaterialDesc& material) {
+  SceneDesc scene = furnace_box(0.5f, Rgb(1.0f));
+  MaterialDesc pane_material;
+  pane_material.pbrt = material;
+  scene.materials.push_back(pane_material);
+  MeshDesc pane;
+  pane.name = "pane";
+  pane.positions = {{-0.9f, -0.9f, -0.4f}, {0.9f, -0.9f, -0.4f}, {0.9f, 0.9f, -0.4f}, {-0.9f, 0.9f, -0.4f}};
+  pane.indices = {0, 1, 2, 0, 2, 3};
+  pane.material = 1;
+  scene.meshes.push_back(pane);
+  return scene;
+}
+
+// Thin surfaces that lose no energy (diffuse transmission with R + T = 1, a thin dielectric) leave the furnace's
+// uniform radiance 1 / (1 - 0.5) = 2 unchanged, from either side: light reaches the camera through them, NEE must
+// find the walls behind them, and a transmitted path changes no medium.
+TEST(PbrtFurnace, LosslessThinPanesAreInvisible) {
+  PbrtMaterialDesc translucent;
+  translucent.kind = PbrtMaterialKind::DiffuseTransmission;
+  translucent.reflectance = Rgb(0.6f, 0.3f, 0.5f);
+  translucent.transmittance = Rgb(0.4f, 0.7f, 0.5f);
+  PbrtMaterialDesc window;
+  window.kind = PbrtMaterialKind::ThinDielectric;
+  window.eta = 1.5f;
+  for (const auto& [name, material] : {std::pair{"diffuse_transmission", translucent}, std::pair{"thin_dielectric", window}}) {
+    const SceneDesc scene = furnace_with_pane(material);
     const auto world = build_world(scene, {});
-    std::vector<Estimate> est;
-    for (const Strategy& st : kStrategies)
-      est.push_back(estimate_mean(*world, strategy(st.nee, st.mis, st.rr, kDepth), scene.cameras[0], 200000, 11));
-    for (size_t a = 0; a < est.size(); ++a)
-      for (size_t b = a + 1; b < est.size(); ++b) {
-        const double se = std::hypot(est[a].stderr_, est[b].stderr_);
-        EXPECT_NEAR(est[a].mean, est[b].mean, 4.5 * se) << name << ": " << kStrategies[a].name << " " << est[a].mean
-                                                         << " vs " << kStrategies[b].name << " " << est[b].mean;
-      }
-    // Energy: D bounces of an albedo <= 1 material give at most D + 1.
-    for (const Estimate& e : est) EXPECT_LE(e.mean, kDepth + 1.0 + 4.5 * e.stderr_) << name;
+    EXPECT_FALSE(world->features & kFeatureDielectric) << name;  // two-sided: no media are tracked
+    for (const Strategy& st : kStrategies) {
+      PathSettings s = strategy(st.nee, st.mis, true, -1);
+      const Estimate e = estimate_mean(*world, s, scene.cameras[0], 100000, 31);
+      EXPECT_NEAR(e.mean, 2.0, 4.5 * e.stderr_) << name << " " << st.name << ": " << e.mean << " +- " << e.stderr_;
+    }
+  }
+}
+
+// A lossy diffuse-transmission pane: BSDF sampling, NEE and MIS (and the uniform and cosine strategies, which sample
+// a transmitting surface by its BSDF) agree.
+TEST(PbrtFurnace, StrategiesAgreeThroughADiffuseTransmissionPane) {
+  PbrtMaterialDesc translucent;
+  translucent.kind = PbrtMaterialKind::DiffuseTransmission;
+  translucent.reflectance = Rgb(0.3f, 0.5f, 0.3f);
+  translucent.transmittance = Rgb(0.5f, 0.3f, 0.2f);
+  const SceneDesc scene = furnace_with_pane(translucent);
+  const auto world = build_world(scene, {});
+  constexpr int kDepth = 2;
+  std::vector<Estimate> est;
+  for (const DirectionSampling dirs : {DirectionSampling::Brdf, DirectionSampling::Cosine, DirectionSampling::Uniform})
+    for (const Strategy& st : kStrategies) {
+      PathSettings s = strategy(st.nee, st.mis, st.rr, kDepth);
+      s.directions = dirs;
+      est.push_back(estimate_mean(*world, s, scene.cameras[0], 100000, 41 + est.size()));
+    }
+  for (size_t i = 1; i < est.size(); ++i) {
+    const double se = std::hypot(est[0].stderr_, est[i].stderr_);
+    EXPECT_NEAR(est[i].mean, est[0].mean, 4.5 * se) << "strategy " << i << " " << est[i].mean << " vs " << est[0].mean;
+  }
+}
+
+// A mix chooses one component per hit with probability `amount`, independently at each bounce: a furnace lined with
+// mix(a, b, t) gives sum_{k=0..D} abar^k with abar = (1 - t) a + t b, the blend in expectation; nested mixes too.
+TEST(PbrtFurnace, MixIsTheBlendInExpectation) {
+  const auto diffuse = [](float albedo) {
+    MaterialDesc m;
+    PbrtMaterialDesc d;
+    d.reflectance = Rgb(albedo);
+    m.pbrt = d;
+    return m;
+  };
+  const auto mix = [](int a, int b, float amount) {
+    MaterialDesc m;
+    m.mix = MaterialMixDesc{{a, b}, amount};
+    return m;
+  };
+  struct Case {
+    const char* name;
+    std::vector<MaterialDesc> materials;  // the last one lines the furnace
+    double abar;
+  };
+  const Case cases[] = {
+      {"mix", {diffuse(0.2f), diffuse(0.8f), mix(0, 1, 0.25f)}, 0.75 * 0.2 + 0.25 * 0.8},
+      {"nested", {diffuse(0.2f), diffuse(0.8f), diffuse(0.9f), mix(0, 1, 0.5f), mix(3, 2, 0.4f)},
+       0.6 * (0.5 * 0.2 + 0.5 * 0.8) + 0.4 * 0.9},
+      {"amount_one", {diffuse(0.2f), diffuse(0.8f), mix(0, 1, 1.0f)}, 0.8},
+  };
+  constexpr int kDepth = 3;
+  for (const Case& c : cases) {
+    SceneDesc scene = furnace_box(0.5f, Rgb(1.0f));
+    scene.materials = c.materials;
+    scene.meshes[0].material = int(c.materials.size()) - 1;
+    const auto world = build_world(scene, {});
+    ASSERT_TRUE(world->features & kFeatureMix) << c.name;
+    const double expected = 1 + c.abar + c.abar * c.abar + c.abar * c.abar * c.abar;
+    for (const Strategy& st : kStrategies) {
+      const Estimate e = estimate_mean(*world, strategy(st.nee, st.mis, st.rr, kDepth), scene.cameras[0], 100000, 51);
+      // (+ float rounding: with amount 1 every path has the same weight)
+      EXPECT_NEAR(e.mean, expected, 4.5 * e.stderr_ + 1e-6) << c.name << " " << st.name << ": " << e.mean << " +- "
+                                                             << e.stderr_;
+    }
+  }
+}
+
+TEST(PbrtFurnace, MixCyclesAreRejected) {
+  SceneDesc scene = furnace_box(0.5f, Rgb(1.0f));
+  MaterialDesc a, b;
+  a.mix = MaterialMixDesc{{0, 2}, 0.5f};
+  b.mix = MaterialMixDesc{{1, 0}, 0.5f};
+  scene.materials.push_back(a);
+  scene.materials.push_back(b);
+  try {
+    build_world(scene, {});
+    FAIL() << "a cycle of mixes built";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("mix materials contain each other"), std::string::npos) << e.what();
   }
 }
 
@@ -99,20 +240,11 @@ TEST(PbrtFurnace, StrategiesAgreeOnRoughMaterials) {
 // transmission. BSDF sampling, NEE and MIS agree; so do the uniform and cosine strategies, which sample a surface
 // with transmission by its BSDF.
 TEST(PbrtFurnace, StrategiesAgreeThroughARoughDielectricPane) {
-  SceneDesc scene = furnace_box(0.5f, Rgb(1.0f));
   PbrtMaterialDesc glass;
   glass.kind = PbrtMaterialKind::Dielectric;
   glass.eta = 1.5f;
   glass.uroughness = glass.vroughness = 0.3f;
-  MaterialDesc pane_material;
-  pane_material.pbrt = glass;
-  scene.materials.push_back(pane_material);
-  MeshDesc pane;
-  pane.name = "pane";
-  pane.positions = {{-0.9f, -0.9f, -0.4f}, {0.9f, -0.9f, -0.4f}, {0.9f, 0.9f, -0.4f}, {-0.9f, 0.9f, -0.4f}};
-  pane.indices = {0, 1, 2, 0, 2, 3};
-  pane.material = 1;
-  scene.meshes.push_back(pane);
+  const SceneDesc scene = furnace_with_pane(glass);
   const auto world = build_world(scene, {});
   ASSERT_TRUE(world->features & kFeatureDielectric);  // oriented: media tracked, normals not flipped
   constexpr int kDepth = 2;

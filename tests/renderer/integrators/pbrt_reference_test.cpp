@@ -11,17 +11,13 @@
 // (LayeredExitWeight::PbrtV4, which Kiln does not use by default) adds 0.6% on the killeroos.
 #include <gtest/gtest.h>
 
-#include "renderer/render_util.h"
-#include "renderer/analysis/image_compare.h"
-#include "renderer/image_io/image_io.h"
-#include "renderer/film/pixel_filter.h"
+#include "renderer/pbrt_reference_util.h"
 #include "support/shared_data.h"
 
 namespace kiln::test {
 namespace {
 
 constexpr uint32_t kSpp = 64;
-constexpr int kBlock = 16;
 constexpr double kMedianLimit = 0.02;
 constexpr double kP95Limit = 0.08;
 
@@ -29,16 +25,11 @@ std::string killeroos(const std::string& rel) { return shared_dir() + "/scenes/p
 
 TEST(PbrtReference, KillerooSimpleMatchesPbrtV4) {
   KILN_NEED_SHARED_PATH(killeroos("killeroo-simple.pbrt"));
-  const SceneDesc scene = load_scene(killeroos("killeroo-simple.pbrt"));
-  const auto world = build_scene_world(scene);
-  ASSERT_EQ(pixel_filter_for(scene.cameras.at(0), std::nullopt).kind, PixelFilterKind::Gaussian)
+  ASSERT_EQ(pixel_filter_for(load_scene(killeroos("killeroo-simple.pbrt")).cameras.at(0), std::nullopt).kind,
+            PixelFilterKind::Gaussian)
       << "pbrt's default PixelFilter";
-  const Image image = render_like_kiln(scene, *world, kSpp, 3);
-
-  const Image reference = read_exr(killeroos("reference/killeroo-simple.exr")).rgb;
-  const BlockStats st = block_luminance_stats(image, reference, kBlock);
-  std::cout << "killeroo-simple vs pbrt-v4, " << kSpp << " spp, " << kBlock << "-px blocks: median " << st.median_rel
-            << ", p95 " << st.p95_rel << ", mean ratio " << st.mean_ratio << " over " << st.blocks << " blocks\n";
+  const BlockStats st = render_against_reference("killeroo-simple", killeroos("killeroo-simple.pbrt"),
+                                                 killeroos("reference/killeroo-simple.exr"), kSpp, 3);
   EXPECT_EQ(st.left_out.image, 0u) << "pixels that are not finite";
   EXPECT_LT(st.median_rel, kMedianLimit);
   EXPECT_LT(st.p95_rel, kP95Limit);

@@ -20,8 +20,8 @@ class Reintersection : public AccelParam {};
 
 Vec3f random_unit(Rng& rng) { return sample_uniform_sphere(rng.next_2d()); }
 
-// Random triangles, a sphere and an instanced (rotated, non-uniformly scaled) mesh of size ~size, around a centre
-// at distance ~scale from the origin.
+// Random triangles, a sphere, an instanced (rotated, non-uniformly scaled) mesh and three pbrt quadrics (an annulus
+// sector, an open cylinder, a sphere wedge; rotated) of size ~size, around a centre at distance ~scale from the origin.
 SceneDesc scene_at(float scale, float size, Rng& rng) {
   SceneDesc s;
   s.format = "test";
@@ -66,7 +66,27 @@ SceneDesc scene_at(float scale, float size, Rng& rng) {
   sphere.radius = size;
   sphere.material = 0;
   s.spheres.push_back(sphere);
+  const QuadricOrError quadrics[] = {make_quadric(QuadricType::Disk, size, 0.3f * size, 0.0f, 0, 0, 300.0f),
+                                     make_quadric(QuadricType::Cylinder, size, 0, 0, -size, size, 250.0f),
+                                     make_quadric(QuadricType::Sphere, size, 0, 0, -0.5f * size, size, 270.0f)};
+  for (const QuadricOrError& q : quadrics) {
+    QuadricDesc d;
+    d.name = "quadric";
+    d.quadric = *q.quadric;
+    d.to_world = Transform::translate(c + random_unit(rng) * (3.0f * size)) *
+                 Transform::rotate(360.0f * rng.next_float(), random_unit(rng));
+    d.material = 0;
+    s.quadrics.push_back(d);
+  }
   return s;
+}
+
+// The radius of a curved shape that a spawned ray may cross (a chord away) after leaving it inwards; 0 for flat ones.
+float curved_radius(const World& w, const Shape& sh) {
+  if (sh.kind == ShapeKind::Sphere) return w.geometry.spheres[sh.index].radius;
+  if (sh.kind != ShapeKind::Quadric) return 0.0f;
+  const Quadric& q = w.geometry.quadrics[sh.index].quadric;
+  return q.type == QuadricType::Disk ? 0.0f : q.radius;
 }
 
 // The j-th ray spawned from si: even j a continuation towards dir, odd j a shadow ray to a point 10 sizes away.
@@ -95,6 +115,10 @@ Vec3f point_on(const World& w, uint32_t shape, Rng& rng) {
       const SphereShape& sp = w.geometry.spheres[sh.index];
       return sp.center + random_unit(rng) * (0.9f * sp.radius);
     }
+    case ShapeKind::Quadric: {
+      const QuadricShape& q = w.geometry.quadrics[sh.index];
+      return q.to_world.point(q.quadric.sample_area(rng.next_2d()));
+    }
   }
   return {};
 }
@@ -121,8 +145,7 @@ TEST_P(Reintersection, SpawnedRaysDoNotHitTheirOwnSurface) {
       Hit h;
       if (!w->accel->intersect(primary, h)) continue;
       const SurfaceInteraction si = make_interaction(*w, primary, h);
-      const bool is_sphere = w->geometry.shapes[h.shape].kind == ShapeKind::Sphere;
-      const float radius = is_sphere ? w->geometry.spheres[w->geometry.shapes[h.shape].index].radius : 0.0f;
+      const float radius = curved_radius(*w, w->geometry.shapes[h.shape]);
       for (int j = 0; j < kSpawnedPerHit; ++j) {
         const Vec3f dir = random_unit(rng);
         const Ray r = spawned_ray(si, dir, j, size);
@@ -130,10 +153,11 @@ TEST_P(Reintersection, SpawnedRaysDoNotHitTheirOwnSurface) {
         ++spawned;
         if (!w->accel->intersect(r, h2) || h2.shape != h.shape) continue;
         bool self;
-        if (!is_sphere) {
-          self = h2.prim == h.prim;  // a flat triangle cannot be hit twice by one ray
+        if (radius == 0.0f) {
+          self = h2.prim == h.prim;  // a flat triangle or disk cannot be hit twice by one ray
         } else {
-          // Leaving outwards must miss the sphere; inwards, the far side is a chord 2 r cos away, not ~0.
+          // Leaving outwards must miss a sphere or cylinder; inwards, the far side is a chord at least 2 r cos away
+          // (exactly, on a sphere), not ~0.
           const float cos_in = -dot(normalize(r.d), si.ng);
           self = cos_in <= 0.0f || h2.t * length(r.d) < radius * cos_in;
         }
@@ -169,6 +193,7 @@ TEST_P(Reintersection, InstanceFarFromItsOwnOriginDoesNotShadowItself) {
       s.meshes[0].is_instance_base = true;
       s.meshes[0].visible = false;
       s.spheres.clear();
+      s.quadrics.clear();
       s.instances.resize(1);
       s.instances[0].base_mesh = 0;
       s.instances[0].to_world = Transform::translate(Vec3f(0, 0, translation)) * Transform::scale(Vec3f(1, 1, 2));

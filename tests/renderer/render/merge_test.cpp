@@ -304,6 +304,31 @@ TEST(SceneFingerprint, CoversTextureImagesAndEnvironmentMaps) {
   EXPECT_EQ(again.hash, before.hash);
 }
 
+// A pbrt-v4 scene's spectrum files (.spd, read by the loader itself) are part of its identity: listed after the
+// scene file, relative to it, and a changed value changes the identity and is named.
+TEST(SceneFingerprint, CoversPbrtSpectrumFiles) {
+  const std::string dir = tmp_dir("fingerprint_spd");
+  fs::create_directories(dir + "/spectra");
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir + "/" + name, std::ios::binary) << text;
+  };
+  write("spectra/flat.spd", "300 0.4\n900 0.4\n");
+  write("scene.pbrt",
+        "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
+        "\"integer yresolution\" 8\nWorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" \"spectra/flat.spd\"\n"
+        "Shape \"sphere\"\n");
+  SceneFingerprint before;
+  load_scene_fingerprinted(dir + "/scene.pbrt", {}, before);
+  std::vector<std::string> names;
+  for (const FingerprintedFile& f : before.files) names.push_back(f.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"scene.pbrt", "spectra/flat.spd"}));
+  write("spectra/flat.spd", "300 0.5\n900 0.5\n");
+  SceneFingerprint after;
+  load_scene_fingerprinted(dir + "/scene.pbrt", {}, after);
+  EXPECT_NE(after.hash, before.hash);
+  EXPECT_TRUE(contains(first_file_difference(after.files, before.files).value_or(""), "spectra/flat.spd (hash"));
+}
+
 // The CENG795 scene hw4_2019/sphere_texture_replace_bilinear.xml split into two sample ranges, its earth.jpg
 // inverted between them: `kiln merge` refuses the parts (exit 2, no output), naming both and the texture. With the
 // texture restored, the same parts merge.

@@ -70,8 +70,8 @@ TEST(Production, AovChannelsReadBackWithStandardNames) {
 
 // Why: the values, not just the names. On the plane: albedo is the material's reflectance (the course's
 // DiffuseReflectance kd is a radiance factor, L = kd E, i.e. a Lambertian reflectance of pi kd), normals are unit
-// length and face the camera, position and depth are those of the pixel's central ray. The AOV pass averages
-// grid x grid stratified samples of the pixel (grid 2 at 4 spp), so the average point lies within half a stratum
+// length and face the camera, position and depth are those of the pixel's central ray. The film averages the
+// pixel's samples, which the sampler stratifies 2 x 2 at 4 spp, so the average point lies within half a stratum
 // (a quarter pixel) of the centre's: a hard bound, far below a pixel (a half-pixel shift or a flipped axis fails).
 TEST(Production, AovValuesMatchTheCameraGeometry) {
   const std::string dir = tmp_dir("aov_values");
@@ -242,10 +242,10 @@ TEST(Production, InterruptedPartLeavesNoPart) {
 TEST(Production, CropAndSppRangePartsMergeIntoTheFullRender) {
   const std::string dir = tmp_dir("merge");
   const std::string scene = default_scene();
-  ASSERT_EQ(run({"render", scene, "-o", dir + "/full", "-q", "--spp", "4", "--seed", "9"}), 0);
-  ASSERT_EQ(run({"render", scene, "-o", dir + "/a", "-q", "--spp", "4", "--seed", "9", "--crop", "0,400,0,150", "--spp-range", "0:1"}), 0);
-  ASSERT_EQ(run({"render", scene, "-o", dir + "/b", "-q", "--spp", "4", "--seed", "9", "--crop", "0,400,0,150", "--spp-range", "1:4"}), 0);
-  ASSERT_EQ(run({"render", scene, "-o", dir + "/c", "-q", "--spp", "4", "--seed", "9", "--crop", "0,400,150,400"}), 0);
+  ASSERT_EQ(run({"render", scene, "-o", dir + "/full", "-q", "--spp", "4", "--seed", "9", "--aov", "all"}), 0);
+  ASSERT_EQ(run({"render", scene, "-o", dir + "/a", "-q", "--spp", "4", "--seed", "9", "--aov", "all", "--crop", "0,400,0,150", "--spp-range", "0:1"}), 0);
+  ASSERT_EQ(run({"render", scene, "-o", dir + "/b", "-q", "--spp", "4", "--seed", "9", "--aov", "all", "--crop", "0,400,0,150", "--spp-range", "1:4"}), 0);
+  ASSERT_EQ(run({"render", scene, "-o", dir + "/c", "-q", "--spp", "4", "--seed", "9", "--aov", "all", "--crop", "0,400,150,400"}), 0);
   ASSERT_EQ(run({"merge", dir + "/a/default.exr", dir + "/b/default.exr", dir + "/c/default.exr", "-o", dir + "/merged.exr"}), 0);
   const Image full = read_exr(dir + "/full/default.exr").rgb;
   const Image merged = read_exr(dir + "/merged.exr").rgb;
@@ -257,6 +257,19 @@ TEST(Production, CropAndSppRangePartsMergeIntoTheFullRender) {
       max_rel = std::max(max_rel, std::abs(a - b) / std::max(1e-6, std::abs(b)));
     }
   EXPECT_LT(max_rel, 1e-5) << "merge must reproduce the single run up to float rounding";
+  // The AOVs come from the same samples as the colour (renderer/integrators/aov.h), so the parts' layers merge into
+  // the single run's too. Variance is left out: the merged one is that of the merged mean, from each part's spread.
+  const ExrFile full_exr = read_exr(dir + "/full/default.exr"), merged_exr = read_exr(dir + "/merged.exr");
+  ASSERT_EQ(merged_exr.aovs.size(), full_exr.aovs.size());
+  for (size_t k = 0; k < full_exr.aovs.size(); ++k) {
+    const AovLayer &a = merged_exr.aovs[k], &b = full_exr.aovs[k];
+    ASSERT_EQ(a.channels, b.channels);
+    if (a.channels[0].rfind("Variance.", 0) == 0) continue;
+    double max_err = 0;
+    for (size_t i = 0; i < b.data.size(); ++i)
+      max_err = std::max(max_err, std::abs(double(a.data[i]) - b.data[i]) / std::max(1.0, std::abs(double(b.data[i]))));
+    EXPECT_LT(max_err, 1e-5) << a.channels[0] << ": merge must reproduce the single run's AOV";
+  }
   // A missing part is detected.
   ASSERT_EQ(run({"merge", dir + "/a/default.exr", dir + "/c/default.exr", "-o", dir + "/partial.exr"}), 0);
   EXPECT_EQ(read_exr(dir + "/partial.exr").find("kiln:incomplete"), "true");

@@ -13,17 +13,6 @@
 namespace kiln::test {
 namespace {
 
-// A W x H float EXR whose texel (x, y) (y = 0 the top row) is f(x, y).
-template <typename F>
-std::string write_test_exr(const std::string& name, int w, int h, F f) {
-  Image img(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) img.at(x, y) = f(x, y);
-  const std::string path = tmp_dir("textures") + "/" + name;
-  write_exr(path, img, {}, {});
-  return path;
-}
-
 SceneDesc scene_with_texture(TextureDesc t) {
   SceneDesc s;
   s.source_path = "test.xml";
@@ -145,8 +134,6 @@ TEST(CoursePerlin, GradientIsTheFormulasDerivative) {
 }
 
 // ---- bump and normal maps ----------------------------------------------------------------------------------------
-
-float angle_between(Vec3f a, Vec3f b) { return std::acos(std::clamp(dot(normalize(a), normalize(b)), -1.0f, 1.0f)); }
 
 TEST(BumpMap, ConstantHeightLeavesTheNormal) {
   const std::string path = write_test_exr("flat.exr", 16, 16, [](int, int) { return Rgb(0.7f); });
