@@ -71,7 +71,7 @@ SceneDesc many_lights_room() {
 // The bundled killeroo (8,316 triangles) standing on the floor and glowing, beside a dim ceiling lamp.
 SceneDesc emissive_killeroo_room() {
   SceneDesc s = dark_box();
-  const SceneDesc k = load_scene(std::string(KILN_SOURCE_DIR) + "/scenes/killeroo/killeroo.ply");
+  const SceneDesc k = load_scene(KILN_SOURCE_DIR "/scenes/killeroo/killeroo.ply");
   MeshDesc m = k.meshes.at(0);
   Bounds3f b;
   for (const Vec3f& p : m.positions) b.extend(p);
