@@ -4,6 +4,8 @@ set -euo pipefail
 pkgs=(build-essential cmake libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libpng-dev
       libtinyobjloader-dev zlib1g-dev libxxhash-dev libgtest-dev libbenchmark-dev libpugixml-dev nlohmann-json3-dev
       libcli11-dev)
+# Participating media read .nvdb grids with NanoVDB (header-only).
+pkgs+=(libnanovdb-dev)
 # libFuzzer (the Fuzz.LoadersRunClean test, .ci/fuzz.sh) needs clang and its runtime.
 pkgs+=(clang libclang-rt-14-dev)
 # The folder-cycle check (Layout.NoFolderCycles, tools/folder_cycles.py) and tools/ scripts.

@@ -9,7 +9,14 @@ find_package(pugixml REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(tinyobjloader REQUIRED)
-find_package(ZLIB REQUIRED)  # pbrt ".ply.gz" meshes and ".pbrt.gz" includes
+find_package(ZLIB REQUIRED)  # pbrt ".ply.gz" meshes and ".pbrt.gz" includes and ZIP-compressed .nvdb grids
+# NanoVDB (media/nanovdb_medium.cpp) is header-only and Debian's libnanovdb-dev ships no CMake config.
+find_path(NANOVDB_INCLUDE_DIR nanovdb/NanoVDB.h)
+if(NOT NANOVDB_INCLUDE_DIR)
+  message(FATAL_ERROR "NanoVDB headers not found (Debian: libnanovdb-dev; .ci/install-deps.sh installs it)")
+endif()
+add_library(kiln_nanovdb INTERFACE)
+target_include_directories(kiln_nanovdb SYSTEM INTERFACE ${NANOVDB_INCLUDE_DIR})
 find_package(GTest)
 find_package(benchmark QUIET)
 

@@ -4,14 +4,14 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(_kiln_libs kiln_core kiln_materials kiln_lights kiln_scenes kiln_accel kiln_renderer)
+set(_kiln_libs kiln_core kiln_materials kiln_lights kiln_media kiln_scenes kiln_accel kiln_renderer)
 install(TARGETS kiln RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # The private helper targets carry only link requirements; they are exported so the config resolves.
 install(TARGETS kiln_oiio_plugin LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/kiln)
-install(TARGETS ${_kiln_libs} kiln_image_libs kiln_tinyobjloader EXPORT KilnTargets
+install(TARGETS ${_kiln_libs} kiln_image_libs kiln_tinyobjloader kiln_nanovdb EXPORT KilnTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/kiln)
-foreach(_dir core materials lights scenes renderer)
+foreach(_dir core materials lights media scenes renderer)
   install(DIRECTORY ${CMAKE_SOURCE_DIR}/${_dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/kiln/${_dir}
           FILES_MATCHING PATTERN "*.h" PATTERN "bench" EXCLUDE PATTERN "fuzz" EXCLUDE)
 endforeach()

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/color.h"
@@ -117,6 +118,55 @@ struct CameraDesc {
   float film_scale = 1.0f;
   // The camera moves over the shutter: (position, gaze, up) hold at the start time, `motion` at the end time.
   std::optional<CameraMotionDesc> motion;
+  int medium = -1;  // index into SceneDesc::media of the medium the camera sits in; -1: vacuum
+};
+
+// Participating media (pbrt-v4 MakeNamedMedium; scenes/pbrt/media.cpp reads them, renderer/world builds them into
+// media/). Coefficients are per unit length of world space with the file's "scale" applied, spectra reduced to RGB.
+struct HomogeneousMediumDesc {
+  Rgb sigma_a{1.0f}, sigma_s{1.0f};
+  Rgb le{0.0f};  // emitted radiance (Le x Lescale)
+};
+// A lattice of nx x ny x nz samples (x fastest) over the box [p0, p1] of the medium's space.
+struct MediumLattice {
+  int nx = 1, ny = 1, nz = 1;
+  Vec3f p0{0.0f}, p1{1.0f};
+  size_t count() const { return size_t(nx) * size_t(ny) * size_t(nz); }
+};
+struct GridMediumDesc {  // "uniformgrid"
+  MediumLattice lattice;
+  std::vector<float> density;
+  Rgb sigma_a{1.0f}, sigma_s{1.0f};
+  Rgb le{0.0f};
+  std::vector<float> le_scale;     // lattice.count() values, or one (pbrt-v4's 1x1x1 lattice)
+  std::vector<float> temperature;  // empty, or lattice.count() values: blackbody emission instead of le
+  float temperature_offset = 0.0f, temperature_scale = 1.0f;
+};
+struct RgbGridMediumDesc {  // "rgbgrid"; an absent lattice is empty (1 everywhere for sigma_a, sigma_s)
+  MediumLattice lattice;
+  std::vector<Rgb> sigma_a, sigma_s, le;
+  float scale = 1.0f, le_scale = 1.0f;
+};
+struct NanoVdbMediumDesc {  // "nanovdb"
+  std::string path;  // resolved
+  std::string density_grid = "density", temperature_grid = "temperature";
+  Rgb sigma_a{1.0f}, sigma_s{1.0f};
+  float le_scale = 1.0f, temperature_offset = 0.0f, temperature_scale = 1.0f;
+};
+struct MediumDesc {
+  std::string name;     // as the scene names it
+  std::string element;  // where it is defined, for messages about it (e.g. `line 12 (MakeNamedMedium "fog")`)
+  Transform to_world;   // the medium's own space (lattices and NanoVDB grids live in it)
+  float g = 0.0f;       // Henyey-Greenstein asymmetry
+  std::variant<HomogeneousMediumDesc, GridMediumDesc, RgbGridMediumDesc, NanoVdbMediumDesc> params;
+  // Radiance of a blackbody at the temperatures of media/emission_table.h, for media with a temperature grid.
+  std::vector<Rgb> blackbody;
+};
+// The media on the two sides of a shape: indices into SceneDesc::media, -1 for none (vacuum). "inside" is the side
+// the shape's normal points away from (meshes: the winding's normal; spheres: the centre).
+struct MediumInterfaceDesc {
+  int inside = -1, outside = -1;
+  bool operator==(const MediumInterfaceDesc&) const = default;
 };
 
 enum class BrdfKind { OriginalPhong, ModifiedPhong, OriginalBlinnPhong, ModifiedBlinnPhong, TorranceSparrow, Lambert };
@@ -271,6 +321,7 @@ struct MeshDesc {
   int subdivide = 0;              // Loop subdivision levels requested for this mesh
   Vec3f motion{0, 0, 0};          // MotionBlur: world-space translation over the shutter interval (at time t: t * motion)
   std::vector<int> textures;      // indices into SceneDesc::textures
+  MediumInterfaceDesc media;
   ShapeAlphaDesc alpha;           // pbrt "alpha" (also for the instances of an instance base)
 };
 
@@ -284,6 +335,7 @@ struct SphereDesc {
   Vec3f motion{0, 0, 0};        // MotionBlur (see MeshDesc::motion)
   std::optional<TransformMotionDesc> to_world_motion;  // to_world moves over the shutter (pbrt ActiveTransform)
   std::vector<int> textures;    // indices into SceneDesc::textures
+  MediumInterfaceDesc media;
   ShapeAlphaDesc alpha;         // pbrt "alpha": the sphere is then built as a quadric (pbrt's (u, v))
 };
 
@@ -300,6 +352,7 @@ struct QuadricDesc {
   bool two_sided_emission = false;
   Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
   ShapeAlphaDesc alpha;
+  MediumInterfaceDesc media;
 };
 
 struct InstanceDesc {
@@ -311,6 +364,7 @@ struct InstanceDesc {
   Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
   std::optional<TransformMotionDesc> to_world_motion;  // to_world moves over the shutter (pbrt ActiveTransform)
   std::vector<int> textures;  // indices into SceneDesc::textures; empty: the base mesh's
+  MediumInterfaceDesc media;
 };
 
 struct PointLightDesc { Vec3f position; Rgb intensity; };
@@ -395,6 +449,7 @@ struct SceneDesc {
   std::vector<AreaLightDesc> area_lights;
   std::vector<EnvLightDesc> env_lights;
   std::vector<InfiniteLightDesc> infinite_lights;
+  std::vector<MediumDesc> media;
   // Whether triangles facing away from camera rays are skipped (CENG795 BackfaceCulling); unset: the rule set's
   // default (README, "Course conventions").
   std::optional<bool> backface_culling;

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Fails when Kiln's source folders include each other in a cycle.
 
-The nodes are the layers (core, materials, lights, scenes) and the renderer's concept folders (renderer/world,
+The nodes are the layers (core, materials, lights, media, scenes) and the renderer's concept folders (renderer/world,
 renderer/integrators, ...); an edge A -> B is a `#include "B/..."` in a file of A. Dependencies must point one way
 (README, "Layout"), so every strongly connected component of more than one folder is an error: each is printed with
 the includes that close it, and the exit status is 1.
@@ -13,7 +13,7 @@ import os
 import re
 import sys
 
-LAYERS = ("core", "materials", "lights", "scenes", "renderer")
+LAYERS = ("core", "materials", "lights", "media", "scenes", "renderer")
 SOURCE = re.compile(r"\.(h|hpp|cpp|cc)$")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 

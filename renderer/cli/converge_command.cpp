@@ -13,6 +13,7 @@
 #include "renderer/analysis/convergence.h"
 #include "renderer/analysis/convergence_budget.h"
 #include "renderer/image_io/image_io.h"
+#include "renderer/integrators/rules.h"
 #include "renderer/render/progressive.h"
 #include "renderer/render/render.h"
 #include "renderer/world/world.h"
@@ -217,10 +218,16 @@ int cmd_converge(const ConvergeArgs& args) {
   const std::vector<SamplerWorld> worlds = build_sampler_worlds(scene, args);
   const World& first_world = *worlds.front().world;
   const Camera camera(cd);
+  // A strategy of Kiln's path tracer for one world, volumetric when the scene has media.
+  const auto strategy = [&](const std::string& n, const World& w) {
+    NamedStrategy st = make_strategy(n, base, w.features);
+    st.settings.method = kiln_path_integrator(std::get<PathSettings>(st.settings.method), scene, cd).method;
+    return st;
+  };
   std::vector<MeasuredStrategy> strategies;
   for (const SamplerWorld& sw : worlds)
     for (const std::string& n : names) {
-      NamedStrategy st = make_strategy(n, base, sw.world->features);
+      NamedStrategy st = strategy(n, *sw.world);
       if (!sw.label.empty()) st.name += "/" + sw.label;
       strategies.push_back({std::move(st), sw.world.get()});
     }
@@ -242,7 +249,7 @@ int cmd_converge(const ConvergeArgs& args) {
     reference_note = "reference " + std::filesystem::path(*args.reference).filename().string();
   } else {
     const RenderedReference r =
-        render_reference(first_world, camera, cd.id, make_strategy("mis", base, first_world.features), args,
+        render_reference(first_world, camera, cd.id, strategy("mis", first_world), args,
                          (dir / "reference.exr").string(), interrupt.flag());
     if (r.cancelled) {
       std::fprintf(stderr, "kiln: converge: interrupted while rendering the reference\n");

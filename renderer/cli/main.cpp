@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"kiln", "course"}));
   render->add_option("--strategy", ra.rules.strategy,
                      "Render with Kiln's path tracer and this strategy: uniform, cosine, brdf (no NEE), nee, mis (NEE + "
-                     "BRDF, power heuristic); +rr turns roulette on (e.g. nee+rr)");
+                     "BRDF, power heuristic); +rr turns roulette on (e.g. nee+rr); in media, +hero weights by the "
+                     "tracked channel alone (no MIS over the RGB channels)");
   render->add_option("--rr", ra.rules.russian_roulette, "Russian roulette on/off (true/false)");
   render->add_option("--light-sampler", ra.rules.light_sampler, kLightSamplerHelp)
       ->check(CLI::IsMember({"power", "uniform", "bvh"}));
@@ -108,7 +109,7 @@ int main(int argc, char** argv) {
   converge->add_option("scene", ca.scene, "Scene file")->required();
   converge->add_option("--camera", ca.camera, "Camera id (default: the scene's first camera)");
   converge->add_option("--reference", ca.reference, "Reference EXR at the rendered resolution (default: render one with mis)");
-  converge->add_option("--strategies", ca.strategies, "Comma-separated: uniform, cosine, brdf, nee, mis, each optionally +rr")->capture_default_str();
+  converge->add_option("--strategies", ca.strategies, "Comma-separated: uniform, cosine, brdf, nee, mis, each optionally +rr (and, in media, +hero)")->capture_default_str();
   converge->add_option("--light-samplers", ca.light_samplers, "Comma-separated light samplers (power, uniform, bvh): "
                        "every strategy is measured with each, named STRATEGY/SAMPLER (default: the scene's own only)");
   converge->add_option("--budget", ca.budget_seconds,

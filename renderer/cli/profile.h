@@ -63,6 +63,10 @@ struct ProfileReport {
   RayKindStats primary, shadow, indirect, total;
   double mrays_per_cpu_second = 0;  // total rays per second of render CPU time (per core, robust to contention)
   double ray_query_share = 0;  // of the render's thread time (render_seconds x threads)
+  // Participating media (scenes with media only): tracking through them.
+  bool media = false;
+  uint64_t medium_segments = 0, medium_collisions = 0;
+  double steps_per_segment = 0, majorant_efficiency = 0;
   // Memory (bytes). Peaks are per phase when peak_reset_supported, else the process peak so far.
   size_t baseline_rss = 0, peak_rss = 0;
   size_t parse_peak_rss = 0, subdivision_peak_rss = 0, build_peak_rss = 0, render_peak_rss = 0;

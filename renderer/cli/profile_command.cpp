@@ -213,6 +213,11 @@ ProfileReport run_profile(const ProfileArgs& args) {
     const double thread_seconds = std::max(1e-9, rs.seconds * double(r.threads));
     r.ray_query_share = std::clamp(double(rs.rays.query_cycles()) / tsc_frequency() / thread_seconds, 0.0, 1.0);
     r.render_peak_rss = phase_peak();
+    r.media = !world->media.empty();
+    r.medium_segments = rs.rays.media.rays;
+    r.medium_collisions = rs.rays.media.collisions;
+    r.steps_per_segment = rs.rays.media.steps_per_ray();
+    r.majorant_efficiency = rs.rays.media.majorant_efficiency();
   }
   r.total_seconds = seconds_since(t_start);
   return r;
@@ -251,6 +256,12 @@ std::string profile_json(const ProfileReport& r) {
                        {"shading_and_sampling", 1.0 - r.ray_query_share},
                        {"note", "shading_and_sampling is the remainder of the render's thread time: shading, "
                                 "BSDF and light sampling, camera rays, film and scheduling"}};
+    if (r.media)
+      j["media"] = {{"tracked_segments", r.medium_segments},
+                    {"collisions", r.medium_collisions},
+                    {"steps_per_segment", r.steps_per_segment},
+                    {"majorant_efficiency", r.majorant_efficiency},
+                    {"collisions_per_second", double(r.medium_collisions) / std::max(1e-9, r.render_seconds)}};
   }
   j["memory"] = {{"peak_rss_bytes", r.peak_rss},
                  {"baseline_rss_bytes", r.baseline_rss},
@@ -304,6 +315,10 @@ std::string profile_table(const ProfileReport& r) {
     add("\n  render thread time: %.0f%% ray queries, %.0f%% shading+sampling (remainder: shading, BSDF/light "
         "sampling, camera rays, film, scheduling)\n",
         100.0 * r.ray_query_share, 100.0 * (1.0 - r.ray_query_share));
+    if (r.media)
+      add("  media: %llu tracked segments, %.2f steps per segment, majorant efficiency %.2f, %.2f M collisions/s\n",
+          (unsigned long long)r.medium_segments, r.steps_per_segment, r.majorant_efficiency,
+          double(r.medium_collisions) / std::max(1e-9, r.render_seconds) / 1e6);
   }
   add("\n  memory: peak RSS %.1f MiB = %.0f B/triangle (%.0f B/triangle above the %.1f MiB baseline; %s)\n",
       mib(r.peak_rss), r.bytes_per_triangle(), r.net_bytes_per_triangle(), mib(r.baseline_rss), r.peak_source.c_str());

@@ -58,6 +58,15 @@ nlohmann::json texture_stats_json(const World& w) {
           {"files", c.files}};
 }
 
+// Tracking through media: segments tracked (camera, bounce and light rays inside a medium), tentative collisions
+// per segment, and the mean sigma_t / sigma_maj at them.
+nlohmann::json media_stats_json(const TrackingCounters& t) {
+  return {{"tracked_segments", t.rays},
+          {"collisions", t.collisions},
+          {"steps_per_segment", t.steps_per_ray()},
+          {"majorant_efficiency", t.majorant_efficiency()}};
+}
+
 // Which light sampler next event estimation uses; for the hierarchy its size and build time.
 nlohmann::json light_sampler_json(const WorldStats& s) {
   if (!s.light_sampler_built) return {{"built", false}};
@@ -83,6 +92,16 @@ nlohmann::json world_stats_json(const World& w) {
           {"instances", s.instances},
           {"alpha_shapes", s.alpha_shapes},
           {"interface_shapes_left_out", s.interface_shapes},
+          {"media",
+           {{"built", !w.media.empty()},
+            {"homogeneous", s.homogeneous_media},
+            {"uniformgrid", s.grid_media},
+            {"rgbgrid", s.rgb_grid_media},
+            {"nanovdb", s.nanovdb_media},
+            {"boundaries", s.medium_boundaries},
+            {"majorant_voxels", s.majorant_voxels},
+            {"grid_bytes", s.medium_grid_bytes},
+            {"media", s.media}}},
           {"materials", s.materials},
           {"compiled_materials", s.compiled_materials},
           {"lights",
@@ -370,7 +389,7 @@ RayRates ray_rates(const RenderStats& rs) {
   return {double(rs.rays.total()) / std::max(rs.seconds, 1e-9) / 1e6, query_seconds / std::max(1e-9, thread_seconds)};
 }
 
-void print_frame_summary(const RenderStats& rs, const RayRates& rates) {
+void print_frame_summary(const RenderStats& rs, const RayRates& rates, bool media) {
   if (rs.has_nan)
     std::fprintf(stderr, "kiln: warning: %llu non-finite samples dropped (first at pixel %d,%d sample %llu)\n",
                  (unsigned long long)rs.rays.nan_samples, rs.nan_x, rs.nan_y, (unsigned long long)rs.nan_sample);
@@ -379,6 +398,10 @@ void print_frame_summary(const RenderStats& rs, const RayRates& rates) {
                "ray queries\n",
                rs.seconds, rates.mrays, (unsigned long long)rs.rays.primary, (unsigned long long)rs.rays.shadow,
                (unsigned long long)rs.rays.indirect, 100.0 * rates.query_share);
+  if (media)
+    std::fprintf(stderr, "kiln: media: %llu tracked segments, %.2f steps per segment, majorant efficiency %.2f\n",
+                 (unsigned long long)rs.rays.media.rays, rs.rays.media.steps_per_ray(),
+                 rs.rays.media.majorant_efficiency());
 }
 
 nlohmann::json camera_json(const RenderArgs& args, const LoadedScene& l, const CameraJob& job, const FrameResult& r,
@@ -404,6 +427,7 @@ nlohmann::json camera_json(const RenderArgs& args, const LoadedScene& l, const C
   if (job.options.adaptive)
     cam["adaptive"] = {{"threshold", job.options.adaptive->threshold}, {"min_spp", job.options.adaptive->min_samples()},
                        {"converged_fraction", out.counts.converged_fraction}};
+  if (!l.world->media.empty()) cam["media"] = media_stats_json(rs.rays.media);
   if (r.final_error)
     cam["error"] = {{"reference", *args.reference}, {"mse", r.final_error->mse}, {"relmse", r.final_error->rel_mse},
                     {"rmse", r.final_error->rmse}, {"csv", r.csv_path}};
@@ -449,7 +473,7 @@ int cmd_render(const RenderArgs& args) {
     if (interrupted && is_part) break;
     const WrittenFrame out = write_frame(args, l, job, r);
     const RayRates rates = ray_rates(r.stats);
-    if (!args.quiet) print_frame_summary(r.stats, rates);
+    if (!args.quiet) print_frame_summary(r.stats, rates, !l.world->media.empty());
     std::printf("%s\n%s\n", out.exr.c_str(), out.png.c_str());
     std::fflush(stdout);
     stats["cameras"].push_back(camera_json(args, l, job, r, out, rates));

@@ -14,9 +14,18 @@ const char* name_of(DirectionSampling d) {
 
 std::string depth_of(int max_depth) { return max_depth < 0 ? "unlimited" : std::to_string(max_depth); }
 
-std::string describe_method(const PathSettings& s) {
-  return std::string("Kiln path tracer: ") + name_of(s.directions) + (s.nee ? (s.mis ? "+nee+mis" : "+nee") : "") +
+std::string describe_strategy(const PathSettings& s) {
+  return std::string(name_of(s.directions)) + (s.nee ? (s.mis ? "+nee+mis" : "+nee") : "") +
          (s.russian_roulette ? "+rr" : "") + ", max depth " + depth_of(s.max_depth);
+}
+
+std::string describe_method(const PathSettings& s) { return "Kiln path tracer: " + describe_strategy(s); }
+
+std::string describe_method(const VolPathSettings& s) {
+  std::string d = "Kiln volumetric path tracer: " + describe_strategy(s.path);
+  if (!s.path.channel_mis) d += ", one channel per path (no channel MIS)";
+  if (s.camera_medium >= 0) d += ", camera in medium " + std::to_string(s.camera_medium);
+  return d;
 }
 
 std::string describe_method(const CoursePathSettings& s) {

@@ -1,8 +1,9 @@
-// The integrators: Kiln's own path tracer is what every scene gets under Kiln's rules; the course path tracer and the
-// course ray tracer reproduce the CENG795 reference renderer. Their settings (renderer/integrators/settings.h) say
-// which one renders a camera. Every integrator is a pure function of (render context, camera ray, per-sample
-// sampler): it reads the world and the context and writes nothing but its counters, so output is independent of
-// threads, tile order and of other renders of the same world.
+// The integrators: Kiln's own path tracer is what every scene gets under Kiln's rules (its volumetric path tracer when
+// the scene has participating media); the course path tracer and the course ray tracer reproduce the CENG795
+// reference renderer. Their settings (renderer/integrators/settings.h) say which one renders a camera. Every
+// integrator is a pure function of (render context, camera ray, per-sample sampler): it reads the world and the
+// context and writes nothing but its counters, so output is independent of threads, tile order and of other renders
+// of the same world.
 #pragma once
 #include <cstdint>
 
@@ -28,6 +29,8 @@ inline constexpr uint32_t kTimeStream = 0x74696d65u;  // "time"
 // where to record what the camera sample sees for the AOVs (renderer/film/visible_surface.h), or null; recording
 // draws nothing from the sampler, so the radiance is the same either way.
 Rgb integrate(const RenderContext& ctx, const PathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
+              RayCounters& c, VisibleSurface* visible);
+Rgb integrate(const RenderContext& ctx, const VolPathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
               RayCounters& c, VisibleSurface* visible);
 Rgb integrate(const RenderContext& ctx, const CoursePathSettings& s, const Ray& ray, Vec2f film, Sampler& sampler,
               RayCounters& c, VisibleSurface* visible);

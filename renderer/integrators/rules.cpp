@@ -1,11 +1,15 @@
 #include "renderer/integrators/rules.h"
 
+#include <string_view>
+
 #include "core/error.h"
+#include "renderer/world/world_media.h"
 
 namespace kiln {
 namespace {
 
 inline constexpr char kRrSuffix[] = "+rr";
+inline constexpr char kHeroSuffix[] = "+hero";
 
 bool is_course(SceneRules r) { return r != SceneRules::Kiln; }
 
@@ -15,13 +19,13 @@ CourseRoulette course_roulette_mode(const RuleOverrides& o) {
   throw Error("--course-roulette", "", "unknown mode '" + *o.course_roulette + "' (literal, expected)");
 }
 
-IntegratorSettings kiln_camera(const SceneDesc& scene, const RuleOverrides& o) {
+IntegratorSettings kiln_camera(const CameraDesc& camera, const SceneDesc& scene, const RuleOverrides& o) {
   PathSettings s = kiln_path_defaults(scene);
   if (o.strategy) s = kiln_strategy(*o.strategy, s, "--strategy");
   if (o.russian_roulette) s.russian_roulette = *o.russian_roulette;
   if (o.max_depth) s.max_depth = *o.max_depth;
   if (s.max_depth < 0 && !s.russian_roulette) throw Error("--max-depth", "", "unlimited depth needs --rr true");
-  return s;
+  return kiln_path_integrator(s, scene, camera);
 }
 
 IntegratorSettings ceng795_camera(const CameraDesc& camera, const SceneDesc& scene, const RuleOverrides& o) {
@@ -44,7 +48,7 @@ IntegratorSettings ceng795_camera(const CameraDesc& camera, const SceneDesc& sce
   return s;
 }
 
-IntegratorSettings cs171_camera(const SceneDesc& scene, const RuleOverrides& o) {
+IntegratorSettings cs171_camera(const CameraDesc& camera, const SceneDesc& scene, const RuleOverrides& o) {
   PathSettings s;
   s.directions = DirectionSampling::Brdf;
   s.nee = true;
@@ -52,7 +56,7 @@ IntegratorSettings cs171_camera(const SceneDesc& scene, const RuleOverrides& o) 
   s.russian_roulette = o.russian_roulette.value_or(false);
   s.max_depth = o.max_depth.value_or(scene.max_recursion_depth.value_or(kKilnDefaultMaxDepth));
   if (s.max_depth < 0 && !s.russian_roulette) throw Error("--max-depth", "", "unlimited depth needs --rr true");
-  return s;
+  return kiln_path_integrator(s, scene, camera);
 }
 
 }  // namespace
@@ -117,16 +121,21 @@ IntegratorSettings camera_settings(const CameraDesc& camera, const SceneDesc& sc
                                    const RuleOverrides& o, uint32_t features) {
   IntegratorSettings s;
   switch (rules) {
-    case SceneRules::Kiln: s = kiln_camera(scene, o); break;
+    case SceneRules::Kiln: s = kiln_camera(camera, scene, o); break;
     case SceneRules::Ceng795Course:
       s = ceng795_camera(camera, scene, o);
       s.centre_single_sample = true;
       break;
-    case SceneRules::Cs171Course: s = cs171_camera(scene, o); break;
+    case SceneRules::Cs171Course: s = cs171_camera(camera, scene, o); break;
   }
   s.features = features;
   s.clamp = o.clamp;
   return s;
+}
+
+IntegratorSettings kiln_path_integrator(const PathSettings& s, const SceneDesc& scene, const CameraDesc& camera) {
+  if (!scene_uses_media(scene)) return s;
+  return VolPathSettings{s, camera.medium};
 }
 
 PathSettings kiln_path_defaults(const SceneDesc& scene) {
@@ -137,10 +146,19 @@ PathSettings kiln_path_defaults(const SceneDesc& scene) {
 
 PathSettings kiln_strategy(const std::string& name, PathSettings base, const std::string& option) {
   std::string core = name;
-  const size_t n = sizeof(kRrSuffix) - 1;
-  if (core.size() > n && core.compare(core.size() - n, n, kRrSuffix) == 0) {
-    base.russian_roulette = true;
+  const auto strip = [&](std::string_view suffix) {
+    const size_t n = suffix.size();
+    if (core.size() <= n || core.compare(core.size() - n, n, suffix) != 0) return false;
     core.resize(core.size() - n);
+    return true;
+  };
+  for (bool more = true; more;) {
+    more = false;
+    if (strip(kRrSuffix)) more = base.russian_roulette = true;
+    if (strip(kHeroSuffix)) {
+      base.channel_mis = false;
+      more = true;
+    }
   }
   base.nee = base.mis = false;
   if (core == "uniform") {
@@ -157,7 +175,8 @@ PathSettings kiln_strategy(const std::string& name, PathSettings base, const std
     base.nee = base.mis = true;
   } else {
     throw Error(option, "", "unknown strategy '" + name +
-                                "' (uniform, cosine, brdf, nee, mis; append +rr for Russian roulette, e.g. nee+rr)");
+                                "' (uniform, cosine, brdf, nee, mis; append +rr for Russian roulette, e.g. nee+rr, and +hero "
+                                "to weight media by the tracked channel alone)");
   }
   return base;
 }

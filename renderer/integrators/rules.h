@@ -52,6 +52,10 @@ std::optional<LightSamplerKind> light_sampler_kind(SceneRules rules, const RuleO
 IntegratorSettings camera_settings(const CameraDesc& camera, const SceneDesc& scene, SceneRules rules,
                                    const RuleOverrides& overrides, uint32_t features);
 
+// Kiln's path tracer with settings s for a camera of the scene: its volumetric path tracer when the scene has media
+// (a shape bounding one, or a camera inside one), so that scenes without media keep the surface path tracer's speed.
+IntegratorSettings kiln_path_integrator(const PathSettings& s, const SceneDesc& scene, const CameraDesc& camera);
+
 // Kiln's own path-tracing defaults for a scene (what every strategy study starts from).
 PathSettings kiln_path_defaults(const SceneDesc& scene);
 

@@ -34,6 +34,17 @@ struct PathSettings {
   bool russian_roulette = true;
   int max_depth = kKilnDefaultMaxDepth;      // bounces after the camera ray; < 0: unlimited (only with roulette)
   int rr_min_depth = kKilnRouletteMinDepth;  // roulette starts after this many bounces
+  // Participating media only (the volumetric path tracer): distances are sampled on one channel per path, and
+  // the three channels' densities are combined by the balance heuristic; false weights by the sampled channel's
+  // density alone (unbiased too, but noisy where extinction differs across channels).
+  bool channel_mis = true;
+};
+
+// Kiln's volumetric path tracer (renderer/integrators/vol_path_tracer.cpp): Kiln's path tracer through participating
+// media, with the same strategies; every camera of a scene with media gets it (renderer/integrators/rules.h).
+struct VolPathSettings {
+  PathSettings path;
+  int camera_medium = -1;  // index into World::media of the medium camera rays start in; -1: vacuum
 };
 
 // How the course's RussianRoulette is rendered (README, "Course conventions"). Literal replays its coin flips (its
@@ -60,13 +71,14 @@ struct CourseRaySettings {
 };
 
 struct IntegratorSettings {
-  std::variant<PathSettings, CoursePathSettings, CourseRaySettings> method;
+  std::variant<PathSettings, VolPathSettings, CoursePathSettings, CourseRaySettings> method;
   uint32_t features = kFeatureAll;  // the scene's feature mask: code paths for absent features are skipped
   float clamp = 0.0f;               // firefly clamp on each sample's radiance; 0 = off
   bool centre_single_sample = false;  // a 1-spp render samples pixel centres (the course's convention)
 
   IntegratorSettings() = default;
   IntegratorSettings(PathSettings s) : method(s) {}  // NOLINT: every integrator's settings are settings
+  IntegratorSettings(VolPathSettings s) : method(s) {}  // NOLINT
   IntegratorSettings(CoursePathSettings s) : method(s) {}  // NOLINT
   IntegratorSettings(CourseRaySettings s) : method(s) {}  // NOLINT
   std::string describe() const;

@@ -18,6 +18,7 @@ std::string describe_features(uint32_t mask) {
       {kFeatureQuadrics, "quadrics"},       {kFeatureQuadricLights, "quadric-lights"},
       {kFeatureAlpha, "alpha"},
       {kFeatureMix, "mix"},
+      {kFeatureMedia, "media"},
   };
   std::string s;
   for (const auto& [bit, name] : kNames)

@@ -29,6 +29,7 @@ enum Feature : uint32_t {
   kFeatureQuadricLights = 1u << 19,   // emitting quadrics
   kFeatureAlpha = 1u << 20,           // alpha cut-outs: the accelerators test shapes' opacity at candidate hits
   kFeatureMix = 1u << 21,             // mix materials: each hit chooses one of a mix's components (World::mixes)
+  kFeatureMedia = 1u << 22,           // participating media: the volumetric path tracer renders the scene
   kFeatureAll = 0xffffffffu,
 };
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "media/tracking.h"
 #include "renderer/world/world.h"
 
 namespace kiln {
@@ -15,6 +16,7 @@ struct RayCounters {
   // TSC cycles spent inside accelerator queries, by ray kind (the query rate of each kind inside a render).
   uint64_t primary_cycles = 0, shadow_cycles = 0, indirect_cycles = 0;
   uint64_t nan_samples = 0;
+  TrackingCounters media;  // the volumetric path tracer's tracking through media
   void add(const RayCounters& o) {
     primary += o.primary;
     shadow += o.shadow;
@@ -23,6 +25,7 @@ struct RayCounters {
     shadow_cycles += o.shadow_cycles;
     indirect_cycles += o.indirect_cycles;
     nan_samples += o.nan_samples;
+    media.add(o.media);
   }
   uint64_t total() const { return primary + shadow + indirect; }
   uint64_t query_cycles() const { return primary_cycles + shadow_cycles + indirect_cycles; }
@@ -61,6 +64,16 @@ inline bool query_camera_culled(const World& w, const Ray& r, Hit& hit, RayCount
     ray.tmin = std::nextafter(hit.t, kInfinity);
   }
   return false;
+}
+
+// A shadow ray that needs its closest hit: through participating media, where boundaries are crossed, not
+// occluding (the volumetric path tracer's transmittance rays).
+inline bool query_shadow_hit(const World& w, const Ray& r, Hit& hit, RayCounters& c) {
+  const uint64_t t0 = __rdtsc();
+  const bool h = w.accel->intersect(r, hit);
+  c.shadow_cycles += __rdtsc() - t0;
+  ++c.shadow;
+  return h;
 }
 
 inline bool query_occluded(const World& w, const Ray& r, RayCounters& c) {

@@ -8,6 +8,7 @@
 #include "renderer/world/alpha_cutouts.h"
 #include "renderer/world/environment_map.h"
 #include "renderer/texture/scene_textures.h"
+#include "renderer/world/world_media.h"
 #include "scenes/material_mapping.h"
 
 namespace kiln {
@@ -118,6 +119,7 @@ QuadricDesc quadric_of_sphere(const SphereDesc& s) {
   q.emission = s.emission;
   q.motion = s.motion;
   q.alpha = s.alpha;
+  q.media = s.media;
   return q;
 }
 
@@ -156,6 +158,7 @@ class WorldBuilder {
     if (!w_.ambient.is_black()) w_.features |= kFeatureAmbient;
     add_materials();
     add_textures();
+    add_media();
     add_meshes();
     add_spheres();
     add_quadrics();
@@ -216,13 +219,32 @@ class WorldBuilder {
     return textures().bind(scene_, textures_of_shape, material, to_world);
   }
 
-  // Surfaces whose material only marks a boundary (pbrt's "interface") change no ray: without participating media
-  // they are left out of the geometry, so they neither stop camera rays nor shadow lights.
-  bool invisible(int material, const std::optional<Rgb>& emission) {
+  // Participating media: built only when a shape bounds one or a camera sits in one.
+  void add_media() {
+    media_ = scene_uses_media(scene_);
+    if (!media_) return;
+    build_world_media(scene_, w_);
+    w_.features |= kFeatureMedia;
+  }
+
+  // The media on a shape's sides; a transition only when the scene's media are built.
+  MediumInterface medium_interface(const MediumInterfaceDesc& d, const std::string& name) {
+    if (!media_) return MediumInterface{};
+    for (const int m : {d.inside, d.outside})
+      if (m < -1 || m >= int(w_.media.size()))
+        throw Error(scene_.source_path, name, "names a medium that does not exist");
+    if (d.inside != d.outside) ++w_.stats.medium_boundaries;
+    return MediumInterface{d.inside, d.outside};
+  }
+
+  // Surfaces whose material only marks a boundary (pbrt's "interface") change no ray unless they bound a medium:
+  // those are left out of the geometry, so they neither stop camera rays nor shadow lights.
+  bool invisible(int material, const std::optional<Rgb>& emission, const MediumInterfaceDesc& sides) {
     const bool emits = emission && !emission->is_black();
     if (emits || material < 0 || size_t(material) >= w_.materials.size() ||
         !w_.materials[size_t(material)].passes_through)
       return false;
+    if (media_ && sides.inside != sides.outside) return false;
     ++w_.stats.interface_shapes;
     return true;
   }
@@ -248,7 +270,7 @@ class WorldBuilder {
       MeshArrays* arrays = taken_ && (*taken_)[i] ? &*(*taken_)[i] : nullptr;
       if (!m.visible || (!arrays && m.indices.empty())) continue;  // taken arrays are never empty
       check_material(scene_, m.material, m.name, m.emission.has_value());
-      if (invisible(m.material, m.emission)) continue;
+      if (invisible(m.material, m.emission, m.media)) continue;
       add_mesh(m, arrays);
       if (arrays) (*taken_)[i].reset();  // frees what the world did not keep (e.g. an untextured mesh's uvs)
     }
@@ -264,6 +286,7 @@ class WorldBuilder {
                             : TriangleMesh{transformed_points(m.positions, m.to_world), with_spare_capacity(m.indices)};
     ShapeData sd;
     sd.material = m.material;
+    sd.media = medium_interface(m.media, m.name);
     sd.smooth = m.smooth || !normals.empty();
     sd.textures = bind_textures(m.textures, m.material, m.to_world);
     if (has_uvs && (sd.textures >= 0 || m.alpha.texture >= 0)) {  // alpha textures read uvs too
@@ -304,7 +327,7 @@ class WorldBuilder {
     WorldGeometry& g = w_.geometry;
     for (const SphereDesc& s : scene_.spheres) {
       check_material(scene_, s.material, s.name, s.emission.has_value());
-      if (invisible(s.material, s.emission)) continue;
+      if (invisible(s.material, s.emission, s.media)) continue;
       if (s.alpha.cuts() && s.radius > 0.0f) {
         if (!s.emission || s.emission->is_black()) {
           cut_spheres_.push_back(quadric_of_sphere(s));
@@ -314,6 +337,7 @@ class WorldBuilder {
       }
       ShapeData sd;
       sd.material = s.material;
+      sd.media = medium_interface(s.media, s.name);
       sd.textures = bind_textures(s.textures, s.material, s.to_world);
       const bool emits = s.emission && !s.emission->is_black();
       if (emits && !(s.radius > 0.0f)) {
@@ -340,9 +364,10 @@ class WorldBuilder {
     for (const std::vector<QuadricDesc>* list : {&scene_.quadrics, &cut_spheres})
       for (const QuadricDesc& q : *list) {
         check_material(scene_, q.material, q.name, q.emission.has_value());
-        if (invisible(q.material, q.emission)) continue;
+        if (invisible(q.material, q.emission, q.media)) continue;
         ShapeData sd;
         sd.material = q.material;
+        sd.media = medium_interface(q.media, q.name);
         if (q.emission && !q.emission->is_black())
           sd.light = add_shape_light(QuadricLight(q.quadric, q.to_world, q.flip, *q.emission, q.two_sided_emission),
                                      w_.stats.quadric_lights, kFeatureQuadricLights);
@@ -370,7 +395,8 @@ class WorldBuilder {
       ShapeData sd;
       sd.material = inst.material >= 0 ? inst.material : base.material;
       check_material(scene_, sd.material, inst.name, false);
-      if (invisible(sd.material, std::nullopt)) continue;
+      if (invisible(sd.material, std::nullopt, inst.media)) continue;
+      sd.media = medium_interface(inst.media, inst.name);
       sd.smooth = inst.smooth.value_or(base.smooth || !base.normals.empty());
       if (sd.smooth) {
         int& pn = prototype_normals[size_t(proto)];
@@ -473,6 +499,7 @@ class WorldBuilder {
   std::unique_ptr<World> world_;
   World& w_;
   std::vector<int> prototype_of_;  // mesh index -> index into WorldGeometry::prototypes, or -1
+  bool media_ = false;             // the scene's media are built (add_media)
 };
 
 // Moves the arrays the world keeps out of every visible mesh that is not an instance base (instances read their

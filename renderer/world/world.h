@@ -11,6 +11,7 @@
 #include "lights/light.h"
 #include "lights/light_sampler.h"
 #include "materials/material.h"
+#include "media/medium.h"
 #include "renderer/accel/accelerator.h"
 #include "renderer/world/features.h"
 #include "renderer/world/material_mix.h"
@@ -30,6 +31,7 @@ struct ShapeData {
   int normals = -1;          // index into World::normals (per-vertex, same space as the mesh) or -1
   int uvs = -1;              // index into World::uvs (per-vertex texture coordinates) or -1
   int textures = -1;         // index into World::textures->bindings or -1 (no texture: shading reads no uv)
+  MediumInterface media;     // the media on its two sides (indices into World::media)
 };
 
 struct WorldStats {
@@ -41,6 +43,11 @@ struct WorldStats {
   size_t materials = 0;
   std::map<std::string, size_t> compiled_materials;  // Material::describe() -> how many materials compiled to it
   size_t interface_shapes = 0;  // shapes left out because their material only marks a boundary (pbrt "interface")
+  size_t homogeneous_media = 0, grid_media = 0, rgb_grid_media = 0, nanovdb_media = 0;
+  size_t medium_boundaries = 0;    // shapes whose two sides hold different media
+  size_t majorant_voxels = 0;      // over every heterogeneous medium's majorant grid
+  size_t medium_grid_bytes = 0;    // lattices and NanoVDB grids
+  std::vector<std::string> media;  // Medium describe(), in World::media order
   bool sphere_geometry_built = false;
   bool cone_sampler_built = false;  // sphere/ellipsoid lights present
   bool light_sampler_built = false;
@@ -59,6 +66,8 @@ struct World {
   std::vector<MaterialMix> mixes;  // one per material for scenes with mix materials (kFeatureMix), else empty
   std::vector<Light> lights;
   std::vector<int> infinite_lights;  // indices into lights of what rays that leave the scene see
+  // Participating media, built only when a shape bounds one or a camera sits in one (kFeatureMedia).
+  std::vector<Medium> media;
   LightSampler light_sampler;
   Rgb ambient{0};
   Rgb background{0};

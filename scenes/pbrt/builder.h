@@ -1,8 +1,9 @@
 // Object creation for the pbrt-v4 loader. As in pbrt-v4, reading the file (scenes/pbrt/parser.cpp: tokens,
 // directives, blocks, transforms, the graphics state) is kept apart from making the scene's objects out of a
-// directive's parameter list: materials (scenes/pbrt/materials.cpp), textures (scenes/pbrt/textures.cpp) and lights
-// (scenes/pbrt/lights.cpp), each written into the SceneDesc. Shapes and cameras are made by scenes/pbrt/shapes.h and
-// scenes/pbrt/camera.h. Everything a builder cannot render is reported through PbrtDiagnostics.
+// directive's parameter list: materials (scenes/pbrt/materials.cpp), textures (scenes/pbrt/textures.cpp), lights
+// (scenes/pbrt/lights.cpp) and media (scenes/pbrt/media.cpp), each written into the SceneDesc. Shapes and cameras
+// are made by scenes/pbrt/shapes.h and scenes/pbrt/camera.h. Everything a builder cannot render is reported through
+// PbrtDiagnostics.
 #pragma once
 #include <array>
 #include <functional>
@@ -29,6 +30,9 @@ inline constexpr int kPbrtDefaultCoatMaxDepth = 10;
 inline constexpr int kPbrtMaxNoiseOctaves = 32;
 inline constexpr float kPbrtDefaultDiffuseTransmission = 0.25f;  // both "reflectance" and "transmittance"
 inline constexpr float kPbrtDefaultMixAmount = 0.5f;
+
+// Turns a file name written in the scene into a path (throws kiln::Error naming `line` when it cannot be found).
+using PbrtResolve = std::function<std::string(const std::string& name, int line)>;
 
 // An AreaLightSource in effect: the shapes that follow emit it.
 struct PbrtAreaLight {
@@ -90,6 +94,12 @@ class PbrtBuilder {
   // AreaLightSource: what the shapes that follow emit; empty for area lights Kiln does not render (warned).
   std::optional<PbrtAreaLight> make_area_light(const std::string& type, const PbrtParams& ps);
 
+  // Media (scenes/pbrt/media.cpp): MakeNamedMedium into SceneDesc::media. medium_to_world: the transform in effect.
+  void make_medium(const std::string& name, const PbrtParams& ps, const Transform& medium_to_world,
+                   const PbrtResolve& resolve);
+  // The index into SceneDesc::media of a named medium; -1 for a medium Kiln leaves empty; none when undefined.
+  std::optional<int> named_medium(const std::string& name) const;
+
  private:
   // Parameters that may name a texture (materials and texture operands): a constant, a constant texture's value, or
   // the texture. A texture of a class Kiln does not render is warned and the default used.
@@ -129,6 +139,7 @@ class PbrtBuilder {
   };
   std::map<std::string, ForwardMaterial> forward_materials_;  // used, not defined yet
   void fill_material_slot(int slot, int made);
+  std::map<std::string, int> named_media_;
   // A mix whose component names are resolved at the end (they may be defined after it).
   struct PendingMix {
     int material;

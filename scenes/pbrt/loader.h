@@ -19,7 +19,9 @@
 //   * lights: AreaLightSource "diffuse" (L x scale, twosided) on meshes, spheres and quadrics, LightSource point,
 //     spot, distant (from / to, pbrt's smoothstep spot falloff, "power" / "illuminance" as pbrt normalises them) and
 //     infinite with a constant L (SceneDesc::infinite_lights) or an equal-area image "filename"
-//     (SceneDesc::env_lights, in the light's frame).
+//     (SceneDesc::env_lights, in the light's frame);
+//   * media: MakeNamedMedium into SceneDesc::media (scenes/pbrt/media.cpp), MediumInterface on shapes and the
+//     camera (names resolved when the file ends, so a medium may be named before it is defined).
 // Anything else the file asks for is a warning naming file, line and directive (SceneDesc::warnings) and, when it
 // changes the picture, a SceneDesc::unsupported entry. Malformed input throws kiln::Error naming the file and line.
 // SceneDesc::rules stays SceneRules::Kiln.

@@ -299,6 +299,13 @@ std::vector<Vec3f> PbrtParams::get_point3s(std::string_view name) const {
   return out;
 }
 
+std::vector<Rgb> PbrtParams::get_rgbs(std::string_view name) const {
+  const std::vector<float> f = numbers(name, PbrtType::Rgb, 3);
+  std::vector<Rgb> out(f.size() / 3);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+  return out;
+}
+
 std::vector<Vec3f> PbrtParams::get_normals(std::string_view name) const {
   const std::vector<float> f = numbers(name, PbrtType::Normal, 3);
   std::vector<Vec3f> out(f.size() / 3);

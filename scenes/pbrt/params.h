@@ -93,6 +93,7 @@ class PbrtParams {
   std::vector<Vec3f> get_point3s(std::string_view name) const;
   std::vector<Vec3f> get_normals(std::string_view name) const;
   std::vector<Vec2f> get_point2s(std::string_view name) const;  // also pbrt-v3's "float uv" (pairs)
+  std::vector<Rgb> get_rgbs(std::string_view name) const;       // an "rgb" array (a medium's lattice)
   std::vector<std::string> get_strings(std::string_view name) const;
   // A spectrum: rgb, blackbody, or spectrum (wavelength-value pairs, a named spectrum, or a file of pairs), reduced
   // to RGB for `use` (scenes/pbrt/spectrum.h). Empty when absent or given as a texture (see find_texture).

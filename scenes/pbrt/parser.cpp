@@ -29,9 +29,9 @@ namespace fs = std::filesystem;
 
 using TransformPair = std::array<Transform, 2>;  // the transforms at shutter open and close (ActiveTransform)
 
-// Attribute "shape" / "light" / "material" / "texture" defaults in effect.
+// Attribute "shape" / "light" / "material" / "medium" / "texture" defaults in effect.
 struct AttributeDefaults {
-  std::shared_ptr<const PbrtParams> shape, light, material, texture;
+  std::shared_ptr<const PbrtParams> shape, light, material, medium, texture;
 };
 
 enum class BlockKind { Attribute, Object, Import };
@@ -43,6 +43,9 @@ struct GraphicsState {
   bool reverse_orientation = false;
   int material = -1;  // index into SceneDesc::materials; -1: pbrt's default material
   std::optional<PbrtAreaLight> area_light;
+  // MediumInterface in effect: references into PbrtParser::medium_refs_ (-1: no medium), resolved to media when
+  // the file ends, since pbrt-v4 lets a scene name a medium (the camera's, typically) before defining it.
+  MediumInterfaceDesc media;
   AttributeDefaults defaults;
 };
 
@@ -432,16 +435,20 @@ class PbrtParser {
     if (d == "ObjectInstance") return object_instance(read_string(cur, line, d), line);
     if (d == "MakeNamedMedium") {
       const std::string name = read_string(cur, line, d);
-      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name));
-      for (const PbrtParam& p : ps.params()) p.used = true;
-      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
-      return warn(line, d, "participating media are not rendered; medium " + in_quotes(name) + " ignored");
+      PbrtParams ps = read_params(cur, line, d + " " + in_quotes(name), gs_.defaults.medium);
+      if (!same(gs_.ctm[0], gs_.ctm[1]))
+        warn(line, d, "the medium's transform moves over the shutter; it is placed at its start transform (as pbrt-v4 does)");
+      return builder_.make_medium(name, ps, gs_.ctm[0],
+                                  [&](const std::string& file_name, int l) { return resolve(file_name, l, ps.context()); });
     }
     if (d == "MediumInterface") {
-      read_string(cur, line, d);
-      if (const auto second = cur.peek(); second && second->kind == PbrtTokenKind::String) cur.next();
-      diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
-      return warn(line, d, "participating media are not rendered; ignored");
+      // One name puts the same medium on both sides (no transition).
+      const std::string inside = read_string(cur, line, d);
+      std::string outside = inside;
+      if (const auto second = cur.peek(); second && second->kind == PbrtTokenKind::String)
+        outside = read_string(cur, line, d);
+      gs_.media = {medium_ref(inside, line), medium_ref(outside, line)};
+      return;
     }
     fail(line, "", "unknown directive '" + std::string(t.text.substr(0, 40)) + "'");
   }
@@ -483,11 +490,9 @@ class PbrtParser {
       slot = &gs_.defaults.material;
     else if (target == "texture")
       slot = &gs_.defaults.texture;
-    else if (target == "medium") {
-      for (const PbrtParam& p : ps.params()) p.used = true;
-      warn(line, "Attribute", "participating media are not rendered; ignored");
-      return diag_.unsupported("participating media (pbrt MakeNamedMedium / MediumInterface)", LoadOutcome::Ignored);
-    } else {
+    else if (target == "medium")
+      slot = &gs_.defaults.medium;
+    else {
       fail(line, "Attribute", "unknown target " + in_quotes(target) + " (shape, light, material, medium, texture)");
     }
     // The new values first, then the earlier defaults they do not replace.
@@ -605,6 +610,7 @@ class PbrtParser {
       camera_.resolve = [this, dir = files_.back().dir, f = file()](const std::string& name, int l) {
         return resolve_in(dir, f, name, l, "Camera");
       };
+      camera_medium_ = gs_.media.outside;  // pbrt-v4: the camera sits in the current "outside" medium
       coord_systems_["camera"] = {gs_.ctm[0].inverse(), gs_.ctm[1].inverse()};
     } else if (d == "Film") {
       camera_.film_type = type;
@@ -628,6 +634,9 @@ class PbrtParser {
       diag_.warn(ps, "integrator " + in_quotes(type) + " is rendered with Kiln's path tracer (MIS, roulette)");
       diag_.unsupported("pbrt integrator " + in_quotes(type) + " (Kiln's path tracer renders it)");
     }
+    integrator_ = type;
+    integrator_file_ = file();
+    integrator_line_ = line;
     const int depth = ps.get_int("maxdepth", kPbrtDefaultMaxDepth);
     if (depth < 0) ps.fail(line, "\"maxdepth\" must not be negative");
     scene_.max_recursion_depth = depth;
@@ -645,6 +654,7 @@ class PbrtParser {
     if (!camera_.resolve)
       camera_.resolve = [this](const std::string& name, int l) { return resolve(name, l, "Camera"); };
     PbrtCamera c = make_pbrt_camera(camera_, diag_);
+    c.desc.medium = camera_medium_;
     for (const PbrtParams* ps : {&camera_.camera, &camera_.film, &camera_.sampler, &camera_.filter})
       diag_.report_unused(*ps);
     scene_.cameras.push_back(std::move(c.desc));
@@ -681,6 +691,41 @@ class PbrtParser {
     for (const Block& b : blocks_)
       diag_.warn(b.file, b.line, "AttributeBegin", "has no matching AttributeEnd before the end of the scene");
     builder_.finish_named_materials();
+    resolve_media();
+  }
+
+  // ---- media ----
+
+  // A reference to a medium by name, -1 for none ("").
+  int medium_ref(const std::string& name, int line) {
+    if (name.empty()) return -1;
+    medium_refs_.push_back({name, file(), line});
+    return int(medium_refs_.size()) - 1;
+  }
+
+  int resolve_medium(int ref) const {
+    if (ref < 0) return -1;
+    const MediumRef& r = medium_refs_[size_t(ref)];
+    const auto m = builder_.named_medium(r.name);
+    if (!m)
+      throw Error(r.file, location(r.line, "MediumInterface"),
+                  "no medium named " + in_quotes(r.name) + " (MakeNamedMedium defines them)");
+    return *m;
+  }
+
+  void resolve_media() {
+    const auto resolve_interface = [&](MediumInterfaceDesc& mi) {
+      mi = {resolve_medium(mi.inside), resolve_medium(mi.outside)};
+    };
+    for (MeshDesc& m : scene_.meshes) resolve_interface(m.media);
+    for (SphereDesc& sp : scene_.spheres) resolve_interface(sp.media);
+    for (InstanceDesc& inst : scene_.instances) resolve_interface(inst.media);
+    for (QuadricDesc& q : scene_.quadrics) resolve_interface(q.media);
+    for (CameraDesc& c : scene_.cameras) c.medium = resolve_medium(c.medium);
+    if (!scene_.media.empty() && integrator_ == "path")
+      diag_.warn(integrator_file_, integrator_line_, "Integrator",
+                 "pbrt-v4's \"path\" integrator ignores participating media; Kiln renders them (volumetric path "
+                 "tracing)");
   }
 
   // ---- shapes ----
@@ -707,6 +752,7 @@ class PbrtParser {
       MeshDesc& m = *s.mesh;
       m.material = material;
       m.to_world = to_world;
+      m.media = gs_.media;
       orient(m, flipped, gs_.reverse_orientation);
       if (!m.normals.empty() && !to_world.invertible()) {
         warn(line, ps.context(), "the transform is singular, so the normals \"N\" cannot follow it; face normals used");
@@ -731,6 +777,7 @@ class PbrtParser {
       q.material = material;
       q.to_world = to_world;
       q.flip = flipped;
+      q.media = gs_.media;  // the quadric's normal is pbrt's (flip included), so its sides are pbrt's
       if (light) {
         q.emission = light->radiance;
         q.two_sided_emission = light->two_sided;
@@ -747,6 +794,8 @@ class PbrtParser {
     }
     sp.to_world_motion = motion;
     if (!to_world.invertible()) fail(line, ps.context(), "the transform is singular: a sphere needs its inverse");
+    // Kiln's sphere normal always points out of the sphere; pbrt's "outside" is where its normal points.
+    sp.media = flipped ? MediumInterfaceDesc{gs_.media.outside, gs_.media.inside} : gs_.media;
     if (light) {
       if (flipped) {
         warn(line, ps.context(),
@@ -854,6 +903,7 @@ class PbrtParser {
         fail(line, "ObjectInstance", "the instance transform overflows single precision or is singular");
       inst.to_world_motion = moved(base.to_world);
       inst.material = base.material;
+      inst.media = base.media;
       scene_.instances.push_back(inst);
     }
     const bool cut_sphere = std::any_of(it->second.spheres.begin(), it->second.spheres.end(),
@@ -891,6 +941,14 @@ class PbrtParser {
   std::map<std::string, ObjectDef> objects_;
   std::optional<std::string> current_object_;
   int root_end_line_ = 0;
+  struct MediumRef {
+    std::string name, file;
+    int line = 0;
+  };
+  std::vector<MediumRef> medium_refs_;
+  int camera_medium_ = -1;  // a reference into medium_refs_ until the file ends
+  std::string integrator_, integrator_file_;
+  int integrator_line_ = 0;
 };
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "core/rng.h"
 #include "renderer/world/camera.h"
 #include "renderer/film/film.h"
+#include "renderer/film/pixel_filter.h"
 #include "renderer/image_io/image_io.h"
 #include "renderer/integrators/integrator.h"
 #include "renderer/render/render.h"
@@ -92,6 +93,22 @@ inline std::unique_ptr<World> build_scene_world(const SceneDesc& scene) {
 // The settings the scene's own rules give camera cd (renderer/integrators/rules.h), without command-line overrides.
 inline IntegratorSettings scene_settings(const CameraDesc& cd, const SceneDesc& scene, uint32_t features = kFeatureAll) {
   return camera_settings(cd, scene, scene.rules, {}, features);
+}
+
+// Camera 0 of a scene as `kiln render` renders it (the scene's rules and pixel filter), samples [0, spp): the film's
+// mean. stats receives the render's counters when given.
+inline Image render_like_kiln(const SceneDesc& scene, const World& w, uint32_t spp, uint64_t seed,
+                              RenderStats* stats = nullptr) {
+  const CameraDesc& cd = scene.cameras.at(0);
+  const Camera cam(cd);
+  Film film(cam.width(), cam.height());
+  RenderOptions ro;
+  ro.seed = seed;
+  ro.spp_total = spp;
+  ro.filter = pixel_filter_for(cd, std::nullopt);
+  const RenderStats rs = render_samples(w, cam, scene_settings(cd, scene, w.features), ro, 0, spp, film);
+  if (stats) *stats = rs;
+  return film.mean();
 }
 
 // The bundled default scene at res x res under each integrator: Kiln's path tracer (its own rules), the course path

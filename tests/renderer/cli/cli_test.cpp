@@ -203,6 +203,48 @@ TEST_F(CliBadInput, PbrtUnreadableTexture) {
   expect_bad_input(bad_pbrt("unreadable_texture.pbrt"), "line 3 (Texture \"grid\"): imagemap: image");
 }
 
+// Malformed media fail with exit 2 and no output, naming the scene file and the line.
+std::string media_scene(const std::string& world) {
+  return "LookAt 0 -4 0  0 0 0  0 0 1\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 8 "
+         "\"integer yresolution\" 8\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [1 1 1]\n" +
+         world + "\nMaterial \"interface\"\nShape \"sphere\"\n";
+}
+
+TEST_F(CliBadInput, PbrtMediumLatticeOfTheWrongLength) {
+  expect_bad_input(write_file(dir_, "grid.pbrt", media_scene("MakeNamedMedium \"s\" \"string type\" \"uniformgrid\" "
+                                                               "\"integer nx\" 2 \"integer ny\" 2 \"float density\" [1 2 3]")),
+                   "line 6 (MakeNamedMedium \"s\"): \"density\" has 3 values; nx * ny * nz");
+}
+
+TEST_F(CliBadInput, PbrtMediumNegativeCoefficient) {
+  expect_bad_input(write_file(dir_, "negative.pbrt", media_scene("MakeNamedMedium \"f\" \"string type\" \"homogeneous\" "
+                                                                   "\"float scale\" -2")),
+                   "line 6 (MakeNamedMedium \"f\"): \"scale\" must not be negative");
+}
+
+TEST_F(CliBadInput, PbrtUnknownMediumInMediumInterface) {
+  expect_bad_input(write_file(dir_, "unknown_medium.pbrt",
+                              media_scene("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"
+                                          "MediumInterface \"fgo\" \"\"")),
+                   "line 7 (MediumInterface): no medium named \"fgo\"");
+}
+
+TEST_F(CliBadInput, PbrtMissingOrForeignNanoVdbFile) {
+  expect_bad_input(write_file(dir_, "missing_nvdb.pbrt", media_scene("MakeNamedMedium \"c\" \"string type\" \"nanovdb\" "
+                                                                       "\"string filename\" \"nowhere.nvdb\"")),
+                   "line 6 (MakeNamedMedium \"c\"): cannot find \"nowhere.nvdb\"");
+  write_file(dir_, "text.nvdb", "# not a volume\n");
+  expect_bad_input(write_file(dir_, "foreign_nvdb.pbrt", media_scene("MakeNamedMedium \"c\" \"string type\" \"nanovdb\" "
+                                                                       "\"string filename\" \"text.nvdb\"")),
+                   "is not a NanoVDB file");
+  // NanoVDB's magic number and then nothing: the loader lets it through, the world build names the directive.
+  write_file(dir_, "cut.nvdb", std::string("NanoVDB0") + std::string(24, '\0'));
+  expect_bad_input(write_file(dir_, "cut_nvdb.pbrt", media_scene("MakeNamedMedium \"c\" \"string type\" \"nanovdb\" "
+                                                                   "\"string filename\" \"cut.nvdb\"\n"
+                                                                   "MediumInterface \"c\" \"\"")),
+                   "cut_nvdb.pbrt: line 6 (MakeNamedMedium \"c\"): ");
+}
+
 // A scene whose sphere wears texture `ref` of a Textures block with one image texture `image`.
 std::string textured_scene_text(const std::string& image, const std::string& ref = "1") {
   std::string text = scene_text();
