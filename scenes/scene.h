@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -116,6 +117,9 @@ struct CameraDesc {
   bool aov_layers = false;
   // Every sample's radiance is multiplied by this (pbrt's imaging ratio: Film "iso" / 100 times the exposure time).
   float film_scale = 1.0f;
+  // pbrt's Film "maxcomponentvalue": a sample whose largest channel (after film_scale) is above it is scaled down to
+  // it, its hue kept. Infinity: samples are kept as they are.
+  float max_component = std::numeric_limits<float>::infinity();
   // The camera moves over the shutter: (position, gaze, up) hold at the start time, `motion` at the end time.
   std::optional<CameraMotionDesc> motion;
   int medium = -1;  // index into SceneDesc::media of the medium the camera sits in; -1: vacuum
