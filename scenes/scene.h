@@ -224,11 +224,11 @@ struct PbrtMaterialDesc {
 };
 
 // A material that is one of two others at each hit (pbrt-v4 "mix"): the second with probability `amount`, chosen
-// by a hash of the hit so that the image is the blend in expectation. Components may be mixes themselves (no
-// cycles: the loader rejects them).
+// by a hash of the hit so that the image is the blend in expectation. `amount` may be a float texture, evaluated at
+// the hit before the choice. Components may be mixes themselves (no cycles: the loader rejects them).
 struct MaterialMixDesc {
   std::array<int, 2> materials{-1, -1};  // indices into SceneDesc::materials
-  float amount = 0.5f;
+  TexturedFloat amount{0.5f};            // a constant, or a float texture (SceneDesc::pbrt_textures)
 };
 
 // Calls f on every parameter of d (a PbrtMaterialDesc, const or not) that a texture may set (TexturedFloat /

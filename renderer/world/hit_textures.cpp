@@ -32,6 +32,23 @@ TextureEvalContext pbrt_eval_context(const CameraSpread& camera, float footprint
   return c;
 }
 
+// The plain material a hit on shape material `material` shades with, finishing the mixes' choice that
+// make_interaction stopped at a textured amount (renderer/world/material_mix.h): each textured amount is evaluated
+// at the hit, constant ones are taken as they are.
+int choose_textured_mix(const World& w, const CameraSpread& camera, float footprint_scale, const SurfaceInteraction& si,
+                        int material) {
+  const TextureGraph& g = w.textures->graph();
+  while (w.mixes[size_t(material)].is_mix()) {
+    const MaterialMix& m = w.mixes[size_t(material)];
+    float amount = m.amount;
+    if (m.textured())
+      amount = g.eval_float(m.amount_texture,
+                            pbrt_eval_context(camera, footprint_scale, si, g.needs_footprint(m.amount_texture)));
+    material = mix_component(w.mixes, material, amount, si.p, si.wo);
+  }
+  return material;
+}
+
 }  // namespace
 
 UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si) {
@@ -44,9 +61,14 @@ bool apply_textures(const World& w, const CameraSpread& camera, float pbrt_footp
                     Material& scratch, Rgb& unlit) {
   const SceneTextures& tex = *w.textures;
   const TextureBinding& b = tex.bindings()[size_t(si.textures)];
-  if (b.pbrt_material >= 0) {
+  if (b.pbrt_material >= 0 || b.pbrt_mix) {
     // A mix's hit shades with the component it chose, which may or may not be resolved per hit.
-    const int pm = b.pbrt_mix ? tex.pbrt_material_of(size_t(si.material - w.materials.data())) : b.pbrt_material;
+    int pm = b.pbrt_material;
+    if (b.pbrt_mix) {
+      const int chosen = choose_textured_mix(w, camera, pbrt_footprint_scale, si, int(si.material - w.materials.data()));
+      si.material = &w.materials[size_t(chosen)];
+      pm = tex.pbrt_material_of(size_t(chosen));
+    }
     if (pm < 0) return false;
     const TexturedPbrtMaterial& m = tex.pbrt_materials()[size_t(pm)];
     const bool smooth = w.shape_data[si.shape].normals >= 0;

@@ -162,6 +162,19 @@ TEST_F(CliBadInput, PbrtAlphaNamingASpectrumTexture) {
                    "line 7 (Shape \"disk\"): \"alpha\" needs a float texture, but \"c\" is a spectrum texture");
 }
 
+TEST_F(CliBadInput, PbrtMixAmountNamingAnUnknownOrSpectrumTexture) {
+  const std::string materials = "MakeNamedMaterial \"a\" \"string type\" \"diffuse\"\n";
+  expect_bad_input(write_file(dir_, "mix_amount_unknown.pbrt",
+                              pbrt_scene(materials + "Material \"mix\" \"string materials\" [\"a\" \"a\"] "
+                                                     "\"texture amount\" \"nope\"\n")),
+                   "line 7 (Material \"mix\"): \"amount\": no float texture named \"nope\"");
+  expect_bad_input(write_file(dir_, "mix_amount_spectrum.pbrt",
+                              pbrt_scene("Texture \"c\" \"spectrum\" \"checkerboard\"\n" + materials +
+                                         "Material \"mix\" \"string materials\" [\"a\" \"a\"] "
+                                         "\"texture amount\" \"c\"\n")),
+                   "line 8 (Material \"mix\"): \"amount\" needs a float texture, but \"c\" is a spectrum texture");
+}
+
 TEST_F(CliBadInput, PbrtNegativeRadius) {
   expect_bad_input(write_file(dir_, "negative_radius.pbrt", pbrt_scene("Shape \"cylinder\" \"float radius\" -2\n")),
                    "line 6 (Shape \"cylinder\"): \"radius\" must be positive");
