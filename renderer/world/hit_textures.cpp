@@ -1,5 +1,10 @@
 #include "renderer/world/hit_textures.h"
 
+#include <type_traits>
+
+#include "renderer/texture/bump_map.h"
+#include "scenes/material_mapping.h"
+
 namespace kiln {
 namespace {
 
@@ -14,6 +19,32 @@ void set_reflectances(Material& m, Rgb kd, Rgb ks, float lambert_scale) {
   } else if (auto* t = std::get_if<TorranceSparrow>(&m.surface)) {
     t->kd = kd, t->ks = ks;
   }
+}
+
+// At a hit (si.uv, si.dpdu, si.dpdv set): bends si.ns by the normal map, else the displacement, and when parameters
+// are textured builds `scratch` from their values and points si.material at it. `smooth`: si.ns is interpolated from
+// vertex normals (the bump then uses pbrt-v4's shading tangents).
+void resolve_textured_material(const TextureGraph& g, const TexturedPbrtMaterial& m, const TextureEvalContext& c,
+                               bool smooth, SurfaceInteraction& si, Material& scratch) {
+  const PbrtMaterialDesc& d = m.desc;
+  if (d.normal_map >= 0 || d.displacement >= 0) {
+    Vec3f dpdu = si.dpdu, dpdv = si.dpdv;
+    if (smooth) shading_tangents(si.ns, si.dpdu, dpdu, dpdv);
+    const Vec3f n = d.normal_map >= 0 ? normal_mapped_normal(g, d.normal_map, c, si.ns, dpdu)
+                                      : bump_mapped_normal(g, d.displacement, c, si.ns, dpdu, dpdv);
+    si.ns = unit_on_side(n, si.ng);
+  }
+  if (!m.textured_parameters) return;
+  PbrtMaterialDesc evaluated = d;
+  for_each_texturable(evaluated, [&](auto& p) {
+    if (!p.textured()) return;
+    if constexpr (std::is_same_v<std::decay_t<decltype(p)>, TexturedFloat>)
+      p.value = g.eval_float(p.texture, c);
+    else
+      p.value = g.eval_rgb(p.texture, c);
+  });
+  scratch = build_pbrt_material(evaluated);
+  si.material = &scratch;
 }
 
 // The hit as pbrt-v4 textures see it; the footprint only when a texture reads it.
