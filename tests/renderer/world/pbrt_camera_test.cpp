@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "core/error.h"
 #include "renderer/render_util.h"
 
 namespace kiln::test {
@@ -148,11 +149,12 @@ Film "gbuffer" "float iso" [ 400 ] "integer xresolution" [ 8 ] "integer yresolut
 // Film "maxcomponentvalue" scales a sample whose largest channel is above it down to it, keeping its hue (pbrt-v4's
 // RGBFilm): under a uniform sky of L = (8, 4, 2) every sample, and so every pixel, is (2, 1, 0.5) with the limit 2,
 // stays (8, 4, 2) with the limit 10 or without one; the limit applies after the film's imaging ratio (iso 200
-// doubles the sky to (16, 8, 4) before the limit 10 brings it to (10, 5, 2.5)).
+// doubles the sky to (16, 8, 4) before the limit 10 brings it to (10, 5, 2.5)). A box filter: every pixel is the
+// mean of equal samples.
 TEST(PbrtCamera, MaxComponentValueClampsEachSampleKeepingItsHue) {
   const auto sky_pixel = [](const std::string& name, const std::string& film_params) {
     const std::string path = tmp_dir("pbrt_camera") + "/" + name + ".pbrt";
-    std::ofstream(path) << "Camera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" [ 4 ] "
+    std::ofstream(path) << "Camera \"perspective\"\nPixelFilter \"box\"\nFilm \"rgb\" \"integer xresolution\" [ 4 ] "
                            "\"integer yresolution\" [ 4 ] "
                         << film_params << "\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [ 8 4 2 ]\n";
     const SceneDesc scene = load_scene(path);
