@@ -222,6 +222,18 @@ TEST_F(CliBadInput, PbrtMediumNegativeCoefficient) {
                    "line 6 (MakeNamedMedium \"f\"): \"scale\" must not be negative");
 }
 
+TEST_F(CliBadInput, PbrtMediumCloudNegativeDensity) {
+  expect_bad_input(write_file(dir_, "cloud_density.pbrt", media_scene("MakeNamedMedium \"c\" \"string type\" \"cloud\" "
+                                                                        "\"float density\" -1")),
+                   "line 6 (MakeNamedMedium \"c\"): \"density\" must not be negative");
+}
+
+TEST_F(CliBadInput, PbrtMediumCloudNegativeScale) {
+  expect_bad_input(write_file(dir_, "cloud_scale.pbrt", media_scene("MakeNamedMedium \"c\" \"string type\" \"cloud\" "
+                                                                      "\"float scale\" -3")),
+                   "line 6 (MakeNamedMedium \"c\"): \"scale\" must not be negative");
+}
+
 TEST_F(CliBadInput, PbrtUnknownMediumInMediumInterface) {
   expect_bad_input(write_file(dir_, "unknown_medium.pbrt",
                               media_scene("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"

@@ -7,7 +7,7 @@
 
 #include "renderer/render_util.h"
 #include "renderer/image_io/image_io.h"
-#include "renderer/texture/perlin.h"
+#include "core/perlin.h"
 #include "renderer/texture/scene_textures.h"
 
 namespace kiln::test {
