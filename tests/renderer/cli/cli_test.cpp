@@ -222,16 +222,12 @@ TEST_F(CliBadInput, PbrtMediumNegativeCoefficient) {
                    "line 6 (MakeNamedMedium \"f\"): \"scale\" must not be negative");
 }
 
-TEST_F(CliBadInput, PbrtMediumCloudNegativeDensity) {
-  expect_bad_input(write_file(dir_, "cloud_density.pbrt", media_scene("MakeNamedMedium \"c\" \"string type\" \"cloud\" "
-                                                                        "\"float density\" -1")),
-                   "line 6 (MakeNamedMedium \"c\"): \"density\" must not be negative");
-}
-
-TEST_F(CliBadInput, PbrtMediumCloudNegativeScale) {
-  expect_bad_input(write_file(dir_, "cloud_scale.pbrt", media_scene("MakeNamedMedium \"c\" \"string type\" \"cloud\" "
-                                                                      "\"float scale\" -3")),
-                   "line 6 (MakeNamedMedium \"c\"): \"scale\" must not be negative");
+TEST_F(CliBadInput, PbrtMediumCloudNegativeDensityOrScale) {
+  for (const char* param : {"density", "scale"})
+    expect_bad_input(write_file(dir_, std::string("cloud_") + param + ".pbrt",
+                                media_scene(std::string("MakeNamedMedium \"c\" \"string type\" \"cloud\" \"float ") +
+                                            param + "\" -2")),
+                     std::string("line 6 (MakeNamedMedium \"c\"): \"") + param + "\" must not be negative");
 }
 
 TEST_F(CliBadInput, PbrtUnknownMediumInMediumInterface) {
