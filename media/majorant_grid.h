@@ -19,10 +19,11 @@ struct MajorantSegment {
   Rgb sigma_maj;
 };
 
-// One segment over the whole ray: homogeneous media.
+// One segment: homogeneous media (the whole ray), the cloud (the ray's part inside its box).
 class SingleMajorant {
  public:
-  explicit SingleMajorant(MajorantSegment s) : seg_(s) {}
+  SingleMajorant() = default;  // a ray that misses the medium: no segment
+  explicit SingleMajorant(MajorantSegment s) : seg_(s), done_(false) {}
   bool next(MajorantSegment& s) {
     if (done_) return false;
     s = seg_;
@@ -32,7 +33,7 @@ class SingleMajorant {
 
  private:
   MajorantSegment seg_;
-  bool done_ = false;
+  bool done_ = true;
 };
 
 class MajorantGrid {

@@ -9,6 +9,7 @@
 #include <string>
 #include <variant>
 
+#include "media/cloud_medium.h"
 #include "media/grid_medium.h"
 #include "media/homogeneous_medium.h"
 #include "media/nanovdb_medium.h"
@@ -16,7 +17,7 @@
 
 namespace kiln {
 
-using Medium = std::variant<HomogeneousMedium, GridMedium, RgbGridMedium, NanoVdbMedium>;
+using Medium = std::variant<HomogeneousMedium, GridMedium, RgbGridMedium, NanoVdbMedium, CloudMedium>;
 
 // The media on the two sides of a surface (pbrt-v4's MediumInterface): indices into the world's media, -1 for
 // vacuum. A surface whose two sides hold the same medium is no transition: rays keep the medium they are in.

@@ -157,12 +157,17 @@ struct NanoVdbMediumDesc {  // "nanovdb"
   Rgb sigma_a{1.0f}, sigma_s{1.0f};
   float le_scale = 1.0f, temperature_offset = 0.0f, temperature_scale = 1.0f;
 };
+struct CloudMediumDesc {  // "cloud" (media/cloud_medium.h)
+  Vec3f p0{0.0f}, p1{1.0f};
+  Rgb sigma_a{1.0f}, sigma_s{1.0f};
+  float density = 1.0f, wispiness = 1.0f, frequency = 5.0f;
+};
 struct MediumDesc {
   std::string name;     // as the scene names it
   std::string element;  // where it is defined, for messages about it (e.g. `line 12 (MakeNamedMedium "fog")`)
   Transform to_world;   // the medium's own space (lattices and NanoVDB grids live in it)
   float g = 0.0f;       // Henyey-Greenstein asymmetry
-  std::variant<HomogeneousMediumDesc, GridMediumDesc, RgbGridMediumDesc, NanoVdbMediumDesc> params;
+  std::variant<HomogeneousMediumDesc, GridMediumDesc, RgbGridMediumDesc, NanoVdbMediumDesc, CloudMediumDesc> params;
   // Radiance of a blackbody at the temperatures of media/emission_table.h, for media with a temperature grid.
   std::vector<Rgb> blackbody;
 };

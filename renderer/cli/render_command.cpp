@@ -98,6 +98,7 @@ nlohmann::json world_stats_json(const World& w) {
             {"uniformgrid", s.grid_media},
             {"rgbgrid", s.rgb_grid_media},
             {"nanovdb", s.nanovdb_media},
+            {"cloud", s.cloud_media},
             {"boundaries", s.medium_boundaries},
             {"majorant_voxels", s.majorant_voxels},
             {"grid_bytes", s.medium_grid_bytes},

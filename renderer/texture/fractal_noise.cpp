@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/texture/perlin.h"
+#include "core/perlin.h"
 
 namespace kiln {
 namespace {

@@ -1,4 +1,4 @@
-// Sums of octaves of Kiln's Perlin noise (renderer/texture/perlin.h) for pbrt-v4's noise textures (fbm, wrinkled,
+// Sums of octaves of Kiln's Perlin noise (core/perlin.h) for pbrt-v4's noise textures (fbm, wrinkled,
 // windy, marble). Octave i is the noise at frequency 1.99^i with amplitude omega^i (1.99 rather than 2, so that the
 // octaves' lattices never line up). Octaves finer than the footprint can resolve are left out: with the footprint's
 // larger side len (the change of the point per pixel step), octave i is sampled about 2^i len apart, and aliases
@@ -16,7 +16,5 @@ float turbulence(Vec3f p, Vec3f dpdx, Vec3f dpdy, float omega, int max_octaves);
 
 // The average of |n| over space that turbulence substitutes for unresolved octaves.
 inline constexpr float kAverageAbsNoise = 0.2f;
-// Frequency ratio between octaves.
-inline constexpr float kOctaveLacunarity = 1.99f;
 
 }  // namespace kiln

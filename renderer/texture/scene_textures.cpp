@@ -9,7 +9,7 @@
 #include "core/frame.h"
 #include "renderer/texture/bump_map.h"
 #include "renderer/texture/checkerboard.h"
-#include "renderer/texture/perlin.h"
+#include "core/perlin.h"
 #include "scenes/material_mapping.h"
 
 namespace kiln {

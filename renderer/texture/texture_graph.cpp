@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "renderer/texture/fractal_noise.h"
-#include "renderer/texture/perlin.h"
+#include "core/perlin.h"
 
 namespace kiln {
 namespace {

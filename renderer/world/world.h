@@ -43,7 +43,7 @@ struct WorldStats {
   size_t materials = 0;
   std::map<std::string, size_t> compiled_materials;  // Material::describe() -> how many materials compiled to it
   size_t interface_shapes = 0;  // shapes left out because their material only marks a boundary (pbrt "interface")
-  size_t homogeneous_media = 0, grid_media = 0, rgb_grid_media = 0, nanovdb_media = 0;
+  size_t homogeneous_media = 0, grid_media = 0, rgb_grid_media = 0, nanovdb_media = 0, cloud_media = 0;
   size_t medium_boundaries = 0;    // shapes whose two sides hold different media
   size_t majorant_voxels = 0;      // over every heterogeneous medium's majorant grid
   size_t medium_grid_bytes = 0;    // lattices and NanoVDB grids

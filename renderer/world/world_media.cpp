@@ -47,6 +47,11 @@ Medium nanovdb_medium(const MediumDesc& d, const NanoVdbMediumDesc& v) {
   return NanoVdbMedium(p, d.to_world);
 }
 
+Medium cloud_medium(const MediumDesc& d, const CloudMediumDesc& c) {
+  return CloudMedium(d.to_world, Bounds3f(c.p0, c.p1), c.sigma_a, c.sigma_s, d.g,
+                     CloudShape{c.density, c.wispiness, c.frequency});
+}
+
 void record(const Medium& m, WorldStats& s) {
   s.media.push_back(describe_medium(m));
   std::visit(
@@ -54,6 +59,8 @@ void record(const Medium& m, WorldStats& s) {
         using M = std::decay_t<decltype(x)>;
         if constexpr (std::is_same_v<M, HomogeneousMedium>) {
           ++s.homogeneous_media;
+        } else if constexpr (std::is_same_v<M, CloudMedium>) {
+          ++s.cloud_media;
         } else {
           s.majorant_voxels += x.majorant_grid().voxels();
           if constexpr (std::is_same_v<M, GridMedium>) ++s.grid_media;
@@ -78,6 +85,7 @@ Medium build_medium(const MediumDesc& d) {
           if constexpr (std::is_same_v<P, GridMediumDesc>) return grid_medium(d, p);
           if constexpr (std::is_same_v<P, RgbGridMediumDesc>) return rgb_grid_medium(d, p);
           if constexpr (std::is_same_v<P, NanoVdbMediumDesc>) return nanovdb_medium(d, p);
+          if constexpr (std::is_same_v<P, CloudMediumDesc>) return cloud_medium(d, p);
         },
         d.params);
   } catch (const Error& e) {

@@ -12,8 +12,11 @@
 //   nanovdb       "string filename" (required; resolved like Include, appended to SceneDesc::external_files),
 //                 "string gridname" ("density"), "string temperaturename" ("temperature"), "float Lescale",
 //                 "temperatureoffset" / "temperaturecutoff", "temperaturescale"
-// "cloud" (pbrt's procedural cloud) is warned and left out. Every other mistake (a lattice of the wrong length, a
-// negative coefficient, an unknown type, a missing or non-NanoVDB file) is a kiln::Error naming file and line.
+//   cloud         "float density" (1, not negative), "float wispiness" (1, not negative), "float frequency" (5,
+//                 positive), "point3 p0 p1" (0 0 0, 1 1 1); "scale" multiplies sigma_a and sigma_s as for the other
+//                 media (pbrt-v4's cloud does not read it and stops on it as an unused parameter)
+// Every mistake (a lattice of the wrong length, a negative coefficient, an unknown type, a missing or non-NanoVDB
+// file) is a kiln::Error naming file and line.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -145,16 +148,21 @@ float non_negative(const PbrtParams& ps, const std::string& name, float def) {
   return v;
 }
 
+// "p0" and "p1": a medium's box in its own space.
+void medium_box(const PbrtParams& ps, Vec3f& p0, Vec3f& p1) {
+  p0 = ps.find_point3("p0").value_or(Vec3f(0.0f));
+  p1 = ps.find_point3("p1").value_or(Vec3f(1.0f));
+  if (!(p0.x < p1.x && p0.y < p1.y && p0.z < p1.z))
+    ps.fail(ps.line(), "\"p0\" must lie below \"p1\" on every axis (the medium's box is empty)");
+}
+
 MediumLattice lattice(const PbrtParams& ps) {
   MediumLattice l;
   l.nx = ps.get_int("nx", 1);
   l.ny = ps.get_int("ny", 1);
   l.nz = ps.get_int("nz", 1);
   if (l.nx < 1 || l.ny < 1 || l.nz < 1) ps.fail(ps.line(), "\"nx\", \"ny\" and \"nz\" must be at least 1");
-  l.p0 = ps.find_point3("p0").value_or(Vec3f(0.0f));
-  l.p1 = ps.find_point3("p1").value_or(Vec3f(1.0f));
-  if (!(l.p0.x < l.p1.x && l.p0.y < l.p1.y && l.p0.z < l.p1.z))
-    ps.fail(ps.line(), "\"p0\" must lie below \"p1\" on every axis (the grid's box is empty)");
+  medium_box(ps, l.p0, l.p1);
   return l;
 }
 
@@ -266,6 +274,18 @@ NanoVdbMediumDesc nanovdb(const PbrtParams& ps, float scale, const PbrtResolve& 
   return v;
 }
 
+CloudMediumDesc cloud(const PbrtParams& ps, float scale) {
+  CloudMediumDesc c;
+  medium_box(ps, c.p0, c.p1);
+  c.sigma_a = coefficient(ps, "sigma_a") * scale;
+  c.sigma_s = coefficient(ps, "sigma_s") * scale;
+  c.density = non_negative(ps, "density", c.density);
+  c.wispiness = non_negative(ps, "wispiness", c.wispiness);
+  c.frequency = ps.get_float("frequency", c.frequency);
+  if (!(c.frequency > 0.0f)) ps.fail(ps.line(), "\"frequency\" must be positive");
+  return c;
+}
+
 bool has_temperature(const MediumDesc& m) {
   if (const auto* g = std::get_if<GridMediumDesc>(&m.params)) return !g->temperature.empty();
   return std::holds_alternative<NanoVdbMediumDesc>(m.params);
@@ -297,11 +317,7 @@ void PbrtBuilder::make_medium(const std::string& name, const PbrtParams& ps, con
     scene_.external_files.push_back(v.path);
     m.params = std::move(v);
   } else if (*type == "cloud") {
-    diag_.warn(ps, "the procedural \"cloud\" medium is not rendered; medium " + in_quotes(name) + " is left empty");
-    diag_.unsupported("pbrt \"cloud\" media");
-    for (const PbrtParam& p : ps.params()) p.used = true;
-    named_media_[name] = -1;
-    return;
+    m.params = cloud(ps, scale);
   } else {
     ps.fail(ps.line(), "unknown medium type " + in_quotes(*type) +
                            " (homogeneous, uniformgrid, rgbgrid, nanovdb, cloud)");

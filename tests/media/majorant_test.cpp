@@ -126,5 +126,25 @@ TEST(MajorantGrid, RgbGridBoundsEveryChannel) {
   }
 }
 
+// The cloud's one majorant, sigma_a + sigma_s over the ray's part inside its box, bounds its extinction everywhere
+// along random rays; rays that miss the box get no segment.
+TEST(CloudMedium, MajorantBoundsTheExtinctionAlongRays) {
+  const CloudMedium m(oblique(), Bounds3f({-0.5f, -0.3f, 0.0f}, {1.0f, 1.0f, 0.8f}), Rgb(0.2f, 0.0f, 1.0f),
+                      Rgb(3.0f, 1.0f, 0.5f), 0.0f, CloudShape{3.0f, 2.0f, 4.0f});
+  Rng rng(21, 4);
+  MajorantCheck check;
+  int missed = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Ray ray = random_ray(rng);
+    auto segs = m.majorants(ray, 10.0f);
+    MajorantSegment s;
+    missed += !segs.next(s);
+    check_majorants(m, ray, 10.0f, 400, check);
+  }
+  EXPECT_GT(check.points, 30000);
+  EXPECT_GT(missed, 0);
+  EXPECT_EQ(check.worst_excess, 0.0f) << "at " << check.worst_at.x << " " << check.worst_at.y << " " << check.worst_at.z;
+}
+
 }  // namespace
 }  // namespace kiln::test

@@ -218,6 +218,14 @@ TEST_F(CliBadInput, PbrtMediumNegativeCoefficient) {
                    "line 6 (MakeNamedMedium \"f\"): \"scale\" must not be negative");
 }
 
+TEST_F(CliBadInput, PbrtMediumCloudNegativeDensityOrScale) {
+  for (const char* param : {"density", "scale"})
+    expect_bad_input(write_file(dir_, std::string("cloud_") + param + ".pbrt",
+                                media_scene(std::string("MakeNamedMedium \"c\" \"string type\" \"cloud\" \"float ") +
+                                            param + "\" -2")),
+                     std::string("line 6 (MakeNamedMedium \"c\"): \"") + param + "\" must not be negative");
+}
+
 TEST_F(CliBadInput, PbrtUnknownMediumInMediumInterface) {
   expect_bad_input(write_file(dir_, "unknown_medium.pbrt",
                               media_scene("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"

@@ -13,7 +13,7 @@
 #include "renderer/image_io/image_io.h"
 #include "renderer/render_util.h"
 #include "renderer/texture/fractal_noise.h"
-#include "renderer/texture/perlin.h"
+#include "core/perlin.h"
 #include "renderer/texture/texture_graph.h"
 
 namespace kiln::test {

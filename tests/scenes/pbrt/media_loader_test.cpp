@@ -145,6 +145,36 @@ TEST(PbrtMedia, NanoVdbFileIsResolvedAndListedAsExternal) {
   EXPECT_EQ(s.external_files[0], v.path);
 }
 
+TEST(PbrtMedia, CloudReadsEveryParameterWithPbrtDefaults) {
+  const SceneDesc s = parse_pbrt(head() +
+                                     "MakeNamedMedium \"c\" \"string type\" \"cloud\" \"spectrum sigma_s\" [200 10 900 10]"
+                                     " \"spectrum sigma_a\" [200 .01 900 .01] \"float density\" 2 \"float wispiness\" 0.5"
+                                     " \"float frequency\" 3 \"float g\" 0.7 \"float scale\" 4 \"point3 p0\" [-1 0 -2]"
+                                     " \"point3 p1\" [1 2 3]\n"
+                                     "MakeNamedMedium \"plain\" \"string type\" \"cloud\"\n",
+                                 "media.pbrt");
+  ASSERT_EQ(s.media.size(), 2u);
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+  EXPECT_FLOAT_EQ(s.media[0].g, 0.7f);
+  const auto& c = std::get<CloudMediumDesc>(s.media[0].params);
+  EXPECT_EQ(c.sigma_s, Rgb(40.0f));
+  EXPECT_NEAR(c.sigma_a.g, 0.04f, 1e-6f);
+  EXPECT_EQ(c.density, 2.0f);
+  EXPECT_EQ(c.wispiness, 0.5f);
+  EXPECT_EQ(c.frequency, 3.0f);
+  EXPECT_EQ(c.p0, Vec3f(-1, 0, -2));
+  EXPECT_EQ(c.p1, Vec3f(1, 2, 3));
+  // pbrt-v4's defaults: density 1, wispiness 1, frequency 5, sigma_a = sigma_s = 1, the unit box.
+  const auto& d = std::get<CloudMediumDesc>(s.media[1].params);
+  EXPECT_EQ(d.density, 1.0f);
+  EXPECT_EQ(d.wispiness, 1.0f);
+  EXPECT_EQ(d.frequency, 5.0f);
+  EXPECT_EQ(d.sigma_a, Rgb(1.0f));
+  EXPECT_EQ(d.sigma_s, Rgb(1.0f));
+  EXPECT_EQ(d.p0, Vec3f(0.0f));
+  EXPECT_EQ(d.p1, Vec3f(1.0f));
+}
+
 void expect_error(const std::string& text, const std::string& where, const std::string& what) {
   const std::string e = error_of(text, tmp("bad.pbrt"));
   EXPECT_NE(e.find(where), std::string::npos) << e;
@@ -174,6 +204,17 @@ TEST(PbrtMedia, MalformedMediaAreErrorsNamingFileAndLine) {
   expect_error(head() + kFog + "\nMediumInterface \"fgo\" \"\"\nShape \"sphere\"\n", "bad.pbrt: line 8 (MediumInterface)",
                "no medium named \"fgo\"");
   expect_error(head("nowhere"), "bad.pbrt: line 2 (MediumInterface)", "no medium named \"nowhere\"");
+}
+
+TEST(PbrtMedia, MalformedCloudsAreErrorsNamingFileAndLine) {
+  const std::string at6 = "bad.pbrt: line 6";
+  const std::string cloud = "MakeNamedMedium \"c\" \"string type\" \"cloud\" ";
+  expect_error(head() + cloud + "\"float density\" -1\n", at6, "\"density\" must not be negative");
+  expect_error(head() + cloud + "\"float scale\" -0.5\n", at6, "\"scale\" must not be negative");
+  expect_error(head() + cloud + "\"float wispiness\" -2\n", at6, "\"wispiness\" must not be negative");
+  expect_error(head() + cloud + "\"float frequency\" 0\n", at6, "\"frequency\" must be positive");
+  expect_error(head() + cloud + "\"rgb sigma_s\" [1 -1 1]\n", at6 + " (MakeNamedMedium \"c\"): parameter \"sigma_s\"", "must not be negative");
+  expect_error(head() + cloud + "\"point3 p0\" [0 2 0]\n", at6, "\"p0\" must lie below \"p1\"");
 }
 
 TEST(PbrtMedia, MissingOrForeignNanoVdbFilesAreErrorsAtTheirLine) {

@@ -1,4 +1,4 @@
-#include "renderer/texture/perlin.h"
+#include "core/perlin.h"
 
 #include <cmath>
 
