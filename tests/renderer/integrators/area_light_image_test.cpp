@@ -136,27 +136,26 @@ TEST(AreaLightImage, HalfBlackImageLightsAFloorAsTheLitHalfAlone) {
                         corner_rectangle_irradiance(kC.r, 0.5 * kA, kB, kH), "left half lit");
 }
 
-// A disk of radius 0.8 at height 1.5 above the origin, facing down; pbrt's u = phi / 2 pi. Lit for u < 1/2 only, it
-// gives the origin (on its axis) half the disk's irradiance pi L r^2 / (h^2 + r^2).
-TEST(AreaLightImage, HalfBlackImageOnADiskGivesHalfItsIrradiance) {
+// A disk of radius 0.8 at height 1.5 above the origin, facing down; pbrt's (u, v) = (phi / 2 pi, (r_max - r) / r_max).
+// Lit for u < 1/2 and v > 1/2 only (the image's top left quarter), it gives the origin (on its axis) half the
+// irradiance pi L r^2 / (h^2 + r^2) of the inner disk of radius 0.4.
+TEST(AreaLightImage, ImageOnADiskLightsTheFloorAsItsLitSectorAlone) {
   const std::string dir = tmp_dir("area_light_image/disk");
   constexpr int kN = 256;
-  Image img(kN, 4);
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < kN; ++x) img.at(x, y) = x < kN / 2 ? kC : Rgb(0.0f);
-  write_exr(dir + "/half.exr", img, {}, {});
+  write_exr(dir + "/quarter.exr", quadrants(kN, kC, Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)), {}, {});
   constexpr float kR = 0.8f, kDiskH = 1.5f;
   QuadricDesc q;
   q.name = "disk light";
   q.quadric = *make_quadric(QuadricType::Disk, kR, 0, 0, 0, 0, 360).quadric;
   q.to_world = Transform::translate({0, kDiskH, 0}) * Transform::rotate(90.0f, {1, 0, 0});  // object +z: world -y
   q.emission = Rgb(1.0f);
-  q.emission_image = EmissionImageDesc{dir + "/half.exr", "line 1 (test)"};
+  q.emission_image = EmissionImageDesc{dir + "/quarter.exr", "line 1 (test)"};
   SceneDesc s = lit_floor_scene(kAlbedo, "test.pbrt");
   s.quadrics.push_back(q);
   const auto w = build_world(s, {});
   ASSERT_EQ(w->stats.quadric_lights, 1u);
-  const double want = kAlbedo / kPiD * 0.5 * kPiD * kC.r * kR * kR / (kDiskH * kDiskH + kR * kR);
+  constexpr double kLitR = 0.5 * kR;
+  const double want = kAlbedo / kPiD * 0.5 * kPiD * kC.r * kLitR * kLitR / (kDiskH * kDiskH + kLitR * kLitR);
   for (const char* strategy : {"nee", "brdf", "mis"}) {
     PathSettings p = kiln_strategy(strategy, PathSettings{}, "test");
     p.max_depth = 1;
