@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -116,6 +117,9 @@ struct CameraDesc {
   bool aov_layers = false;
   // Every sample's radiance is multiplied by this (pbrt's imaging ratio: Film "iso" / 100 times the exposure time).
   float film_scale = 1.0f;
+  // pbrt's Film "maxcomponentvalue": a sample whose largest channel (after film_scale) is above it is scaled down to
+  // it, its hue kept. Infinity: samples are kept as they are.
+  float max_component = std::numeric_limits<float>::infinity();
   // The camera moves over the shutter: (position, gaze, up) hold at the start time, `motion` at the end time.
   std::optional<CameraMotionDesc> motion;
   int medium = -1;  // index into SceneDesc::media of the medium the camera sits in; -1: vacuum
@@ -220,11 +224,11 @@ struct PbrtMaterialDesc {
 };
 
 // A material that is one of two others at each hit (pbrt-v4 "mix"): the second with probability `amount`, chosen
-// by a hash of the hit so that the image is the blend in expectation. Components may be mixes themselves (no
-// cycles: the loader rejects them).
+// by a hash of the hit so that the image is the blend in expectation. `amount` may be a float texture, evaluated at
+// the hit before the choice. Components may be mixes themselves (no cycles: the loader rejects them).
 struct MaterialMixDesc {
   std::array<int, 2> materials{-1, -1};  // indices into SceneDesc::materials
-  float amount = 0.5f;
+  TexturedFloat amount{0.5f};            // a constant, or a float texture (SceneDesc::pbrt_textures)
 };
 
 // Calls f on every parameter of d (a PbrtMaterialDesc, const or not) that a texture may set (TexturedFloat /

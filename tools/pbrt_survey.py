@@ -9,8 +9,9 @@ stand-in beside every data file the text names that the collection does not hold
 often absent from a snapshot: a one-triangle PLY, a 4x4 black image made by oiiotool, a flat .spd spectrum, an empty
 file otherwise), and runs `kiln info` on it. What the loader reports as "not rendered yet" is what Kiln would still
 not render; a scene renders as intended when it loads and nothing is reported. An Included text file the collection
-does not hold is read as empty and named in the table, and so is a stand-in kiln cannot read (a volume grid): such a
-scene is "incomplete" unless something is reported. Prints a Markdown table and, below it, how many scenes each
+does not hold is left absent (`kiln info --allow-missing` leaves it out, with the parameters that go on after the
+Include, which belong to its last directive) and named in the table, and so is a stand-in kiln cannot read (a volume
+grid): such a scene is "incomplete" unless something is reported. Prints a Markdown table and, below it, how many scenes each
 feature keeps from rendering as intended.
 """
 import argparse
@@ -43,6 +44,9 @@ SCENES = [
 ]
 
 TOKEN = re.compile(r'"[^"]*"|#[^\n]*|[^\s"#\[\]]+')
+# kiln info's feature name for the files --allow-missing leaves out (the table names them itself).
+MISSING_FILE_FEATURE = "files that are missing"
+
 # Extensions of the data files a scene names (after a trailing .gz): stand-ins are made for the absent ones.
 IMAGE_EXTS = {"exr", "png", "jpg", "jpeg", "tga", "pfm", "hdr", "tif", "tiff", "bmp"}
 DATA_EXTS = IMAGE_EXTS | {"ply", "nvdb", "vdb", "spd", "dat", "bsdf", "ptx", "txt", "csv"}
@@ -126,9 +130,9 @@ def extract(collection, scene, tree, standins):
             continue
         seen.add(rel)
         data = collection.read(rel)
-        if data is None:
+        if data is None:  # left absent: `kiln info --allow-missing` leaves it out with its trailing parameters
             absent.append(rel)
-            data = gzip.compress(b"") if rel.endswith(".gz") else b""
+            continue
         write(tree, rel, data)
         includes, files = references(text_of(data, rel))
         todo += [os.path.normpath(os.path.join(root, name)) for name in includes]
@@ -155,7 +159,7 @@ def write(tree, rel, data):
 def survey(kiln, path):
     """(loaded, first error line, features not rendered) from `kiln info`."""
     try:
-        r = subprocess.run([kiln, "info", path], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        r = subprocess.run([kiln, "info", "--allow-missing", path], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                            timeout=900)
     except subprocess.TimeoutExpired:
         return False, "kiln info took more than 15 minutes", []
@@ -164,6 +168,7 @@ def survey(kiln, path):
         return False, (lines[0] if lines else "exit %d" % r.returncode).replace("kiln: error: ", ""), []
     features = [re.sub(r" \(\d+ directives?\)$", "", line[len("not rendered yet: "):])
                 for line in r.stdout.splitlines() if line.startswith("not rendered yet: ")]
+    features = [f for f in features if not f.startswith(MISSING_FILE_FEATURE)]  # counted as absent files
     return True, "", features
 
 
@@ -197,7 +202,7 @@ def main():
         loads = ("yes" if loaded else "no") + (": " + error.replace(tree + "/", "") if error else "")
         if absent:
             names = [os.path.relpath(a, os.path.dirname(scene)) for a in absent]
-            loads += " (%d file%s absent, read as empty: %s)" % (
+            loads += " (%d file%s absent, left out: %s)" % (
                 len(names), "" if len(names) == 1 else "s", ", ".join(names[:3]) + (", ..." if len(names) > 3 else ""))
         unreadable_standin = not loaded and absent and absent[-1] in standin_files
         if features or not (loaded or unreadable_standin):

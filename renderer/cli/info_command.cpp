@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -249,6 +250,10 @@ void print_text(const InfoArgs& args, const Loaded& l) {
       std::printf("pbrt textures: %zu defined, %zu used by rendered materials or alpha (%zu image files); %zu materials "
                   "evaluated per hit\n",
                   t.pbrt.defined, t.pbrt.compiled, t.pbrt.images, t.textured_materials);
+    const auto textured_mixes = std::count_if(world.mixes.begin(), world.mixes.end(),
+                                              [](const MaterialMix& m) { return m.textured(); });
+    if (textured_mixes > 0)
+      std::printf("mixes chosen per hit by a textured amount: %zu\n", size_t(textured_mixes));
   } else if (!s.pbrt_textures.empty()) {
     std::printf("pbrt textures: %zu defined, none used by a rendered material (no texture system built)\n",
                 s.pbrt_textures.size());

@@ -152,14 +152,15 @@ PathSettings kiln_strategy(const std::string& name, PathSettings base, const std
     core.resize(core.size() - n);
     return true;
   };
+  // Each suffix at most once, in either order ("nee+rr+hero", "nee+hero+rr"; not "nee+rr+rr").
+  bool rr = false, hero = false;
   for (bool more = true; more;) {
     more = false;
-    if (strip(kRrSuffix)) more = base.russian_roulette = true;
-    if (strip(kHeroSuffix)) {
-      base.channel_mis = false;
-      more = true;
-    }
+    if (!rr && strip(kRrSuffix)) more = rr = true;
+    if (!hero && strip(kHeroSuffix)) more = hero = true;
   }
+  if (rr) base.russian_roulette = true;
+  if (hero) base.channel_mis = false;
   base.nee = base.mis = false;
   if (core == "uniform") {
     base.directions = DirectionSampling::Uniform;

@@ -129,7 +129,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
               L = Rgb(0.0f);
             }
             // The camera's own weight (a realistic lens's transmission) scales the radiance, not what it saw.
-            film.add_sample(x, y, s, L * cr.weight, fs.weight, visible);
+            film.add_sample(x, y, s, camera.clamp_sample(L * cr.weight), fs.weight, visible);
             if (options.adaptive && options.adaptive->check_due(px.n)) px.converged = options.adaptive->converged(px);
           }
           if (options.on_pixel_done) options.on_pixel_done();

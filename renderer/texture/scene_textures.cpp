@@ -92,16 +92,18 @@ SceneTextures::~SceneTextures() = default;
 namespace {
 
 // The materials a hit on `material` may shade with: itself, or a mix's components (through nested mixes; the loader
-// and the world reject mixes that contain each other, `depth` stops a cycle that reaches here anyway).
-template <typename F>
-void for_each_shading_material(const SceneDesc& scene, int material, F&& f, int depth = 0) {
+// and the world reject mixes that contain each other, `depth` stops a cycle that reaches here anyway). on_plain(i, m)
+// is called on each of them, on_mix(mix) on every mix on the way.
+template <typename F, typename G>
+void visit_shading_materials(const SceneDesc& scene, int material, F&& on_plain, G&& on_mix, int depth = 0) {
   if (material < 0 || size_t(material) >= scene.materials.size() || depth > int(scene.materials.size())) return;
   const MaterialDesc& m = scene.materials[size_t(material)];
   if (!m.mix) {
-    f(material, m);
+    on_plain(material, m);
     return;
   }
-  for (int c : m.mix->materials) for_each_shading_material(scene, c, f, depth + 1);
+  on_mix(*m.mix);
+  for (int c : m.mix->materials) visit_shading_materials(scene, c, on_plain, on_mix, depth + 1);
 }
 
 bool pbrt_per_hit(const MaterialDesc& m) { return m.pbrt && needs_per_hit_evaluation(*m.pbrt); }
@@ -110,7 +112,9 @@ bool pbrt_per_hit(const MaterialDesc& m) { return m.pbrt && needs_per_hit_evalua
 
 bool material_needs_textures(const SceneDesc& scene, int material) {
   bool needs = false;
-  for_each_shading_material(scene, material, [&](int, const MaterialDesc& m) { needs = needs || pbrt_per_hit(m); });
+  visit_shading_materials(
+      scene, material, [&](int, const MaterialDesc& m) { needs = needs || pbrt_per_hit(m); },
+      [&](const MaterialMixDesc& mix) { needs = needs || mix.amount.textured(); });
   return needs;
 }
 
@@ -151,9 +155,14 @@ int SceneTextures::bind(const SceneDesc& scene, const std::vector<int>& textures
     if (t.bump) b.bump = i, any = true;
   }
   if (material_needs_textures(scene, material)) {
-    for_each_shading_material(scene, material, [&](int c, const MaterialDesc& m) {
-      if (pbrt_per_hit(m)) b.pbrt_material = use_pbrt_material(scene, c);
-    });
+    visit_shading_materials(
+        scene, material,
+        [&](int c, const MaterialDesc& m) {
+          if (pbrt_per_hit(m)) b.pbrt_material = use_pbrt_material(scene, c);
+        },
+        [&](const MaterialMixDesc& mix) {
+          if (mix.amount.textured()) graph_.use(mix.amount.texture);
+        });
     b.pbrt_mix = bool(scene.materials[size_t(material)].mix);
     any = true;
   }

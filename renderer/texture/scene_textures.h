@@ -56,7 +56,8 @@ struct TextureBinding {
   bool footprint = false;  // the kd, ks or all texture is filtered over the hit's footprint (trilinear / ewa)
   int material = -1;  // index into SceneTextures::materials (the texturable prototype) or -1: no k_d / k_s texture
   int pbrt_material = -1;  // index into SceneTextures::pbrt_materials: a pbrt-v4 material resolved per hit
-  // A mix with a component resolved per hit: the component the hit chose is looked up (pbrt_material_of).
+  // A mix with a textured amount or a component resolved per hit: the hit finishes the mix's choice (the textured
+  // amounts' values there) and looks up the component it chose (pbrt_material_of).
   bool pbrt_mix = false;
   // Procedural textures are evaluated in the object's own space (the course's: veach-ajar's floor, scaled 1.8x along
   // x by its transformation, has squares 1.8x wider along x in its reference).
@@ -143,7 +144,7 @@ class SceneTextures {
 };
 
 // Whether a shape with this material (an index into SceneDesc::materials) needs the scene's textures although it has
-// no course textures: a pbrt-v4 material evaluated per hit, or a mix with such a component.
+// no course textures: a pbrt-v4 material evaluated per hit, or a mix with such a component or a textured amount.
 bool material_needs_textures(const SceneDesc& scene, int material);
 
 }  // namespace kiln

@@ -3,7 +3,6 @@
 #include <type_traits>
 
 #include "renderer/texture/bump_map.h"
-#include "renderer/world/interaction.h"
 #include "scenes/material_mapping.h"
 
 namespace kiln {
@@ -46,29 +45,6 @@ std::array<Material, 2> per_hit_variants(const PbrtMaterialDesc& d) {
     out[size_t(i)] = build_pbrt_material(v);
   }
   return out;
-}
-
-void resolve_textured_material(const TextureGraph& g, const TexturedPbrtMaterial& m, const TextureEvalContext& c,
-                               bool smooth, SurfaceInteraction& si, Material& scratch) {
-  const PbrtMaterialDesc& d = m.desc;
-  if (d.normal_map >= 0 || d.displacement >= 0) {
-    Vec3f dpdu = si.dpdu, dpdv = si.dpdv;
-    if (smooth) shading_tangents(si.ns, si.dpdu, dpdu, dpdv);
-    const Vec3f n = d.normal_map >= 0 ? normal_mapped_normal(g, d.normal_map, c, si.ns, dpdu)
-                                      : bump_mapped_normal(g, d.displacement, c, si.ns, dpdu, dpdv);
-    si.ns = unit_on_side(n, si.ng);
-  }
-  if (!m.textured_parameters) return;
-  PbrtMaterialDesc evaluated = d;
-  for_each_texturable(evaluated, [&](auto& p) {
-    if (!p.textured()) return;
-    if constexpr (std::is_same_v<std::decay_t<decltype(p)>, TexturedFloat>)
-      p.value = g.eval_float(p.texture, c);
-    else
-      p.value = g.eval_rgb(p.texture, c);
-  });
-  scratch = build_pbrt_material(evaluated);
-  si.material = &scratch;
 }
 
 }  // namespace kiln

@@ -12,8 +12,6 @@
 
 namespace kiln {
 
-struct SurfaceInteraction;
-
 struct TexturedPbrtMaterial {
   PbrtMaterialDesc desc;             // its textured parameters' `value`s are filled per hit
   bool textured_parameters = false;  // else only the shading normal changes and the world's material is used
@@ -27,11 +25,5 @@ TexturedPbrtMaterial make_textured_material(const PbrtMaterialDesc& d, TextureGr
 // Two materials that between them have every lobe d can take at a hit (its textured floats all 0, all 1: smooth
 // and rough), so that the world's feature mask covers what textures may choose.
 std::array<Material, 2> per_hit_variants(const PbrtMaterialDesc& d);
-
-// At a hit (si.uv, si.dpdu, si.dpdv set): bends si.ns by the normal map, else the displacement, and when parameters
-// are textured builds `scratch` from their values and points si.material at it. `smooth`: si.ns is interpolated from
-// vertex normals (the bump then uses pbrt-v4's shading tangents).
-void resolve_textured_material(const TextureGraph& g, const TexturedPbrtMaterial& m, const TextureEvalContext& c,
-                               bool smooth, SurfaceInteraction& si, Material& scratch);
 
 }  // namespace kiln

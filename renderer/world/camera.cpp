@@ -37,7 +37,8 @@ Camera::Camera(const CameraDesc& c)
     : projection_(c.projection), mapping_(c.spherical_mapping), near_(c.near_distance), width_(c.width),
       height_(c.height), full_width_(c.full_width > 0 ? c.full_width : c.width),
       full_height_(c.full_height > 0 ? c.full_height : c.height), crop_x_(c.crop_x), crop_y_(c.crop_y),
-      aperture_(c.aperture_size), focus_(c.focus_distance), disk_lens_(c.disk_lens), film_scale_(c.film_scale) {
+      aperture_(c.aperture_size), focus_(c.focus_distance), disk_lens_(c.disk_lens), film_scale_(c.film_scale),
+      max_component_(c.max_component) {
   if (width_ <= 0 || height_ <= 0) throw Error("camera " + c.id + ": image resolution must be positive");
   frame_.e = c.position;
   if (!(length(c.gaze) > 0.0f)) throw Error("camera " + c.id + ": gaze has zero length");

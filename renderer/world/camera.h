@@ -47,6 +47,11 @@ class Camera {
   int height() const { return height_; }
   bool has_aperture() const;
   bool moves() const { return motion_.animated(); }
+  // A sample's radiance with its largest channel limited to CameraDesc::max_component (hue kept).
+  Rgb clamp_sample(Rgb L) const {
+    const float m = L.max_component();
+    return m > max_component_ ? L * (max_component_ / m) : L;
+  }
   // The spread of rays per pixel step near the film centre, for texture footprints (renderer/texture/footprint.h).
   CameraSpread pixel_spread() const;
 
@@ -69,6 +74,7 @@ class Camera {
   float aperture_ = 0.0f, focus_ = 0.0f;
   bool disk_lens_ = false;
   float film_scale_ = 1.0f;
+  float max_component_;
   std::unique_ptr<LensSystem> lens_;
 };
 

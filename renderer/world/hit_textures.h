@@ -14,8 +14,8 @@ namespace kiln {
 UvFootprint hit_footprint(const CameraSpread& camera, const SurfaceInteraction& si);
 
 // Shading at a textured hit (si.textures >= 0) of world w: sets si.material to `scratch` (the material with the
-// texel's k_d / k_s, or a pbrt-v4 material built from its textures' values there) and bends si.ns by bump or normal
-// maps. pbrt-v4 textures' footprints are `camera`'s narrowed by pbrt_footprint_scale (footprint_scale_for_spp).
+// texel's k_d / k_s, or a pbrt-v4 material built from its textures' values there), or to the component a mix with a
+// textured amount chooses there (renderer/world/material_mix.h), and bends si.ns by bump or normal maps. pbrt-v4 textures' footprints are `camera`'s narrowed by pbrt_footprint_scale (footprint_scale_for_spp).
 // Returns true when a replace_all texture gives the surface's colour outright (`unlit`), without shading.
 bool apply_textures(const World& w, const CameraSpread& camera, float pbrt_footprint_scale, SurfaceInteraction& si,
                     Material& scratch, Rgb& unlit);

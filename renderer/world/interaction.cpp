@@ -158,6 +158,7 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   }
   if (sd.textures >= 0) {
     si.textures = sd.textures;
+    si.wo = -ray.d;
     texture_frame<kMeshesOnly>(world, sd, ray, hit, si);
   }
   return si;

@@ -20,6 +20,7 @@ struct SurfaceInteraction {
   int textures = -1;  // index into World::textures->bindings
   Vec2f uv;           // texture coordinates (spec §7-§8: mesh vertices' uv, sphere (theta, phi) mapping)
   Vec3f dpdu, dpdv;   // world-space derivatives of p along u and v (never both zero: a frame around ng otherwise)
+  Vec3f wo;           // -ray.d: what a mix with a textured amount hashes with p (renderer/world/material_mix.h)
 };
 
 // kMeshesOnly: the scene's feature mask has neither spheres nor instances, so every hit is on a world-space mesh

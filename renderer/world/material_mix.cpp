@@ -58,23 +58,23 @@ std::vector<MaterialMix> build_material_mixes(const SceneDesc& scene) {
       if (c < 0 || size_t(c) >= n)
         throw Error(scene.source_path, "Material id=" + std::to_string(scene.materials[i].id),
                     "a mix names material index " + std::to_string(c) + ", not one of the " + std::to_string(n));
-    mixes[i] = MaterialMix{mix->materials, mix->amount};
+    mixes[i] = MaterialMix{mix->materials, mix->amount.value, mix->amount.texture};
   }
   if (mixes.empty()) return mixes;
   check_acyclic(scene, mixes);
   return mixes;
 }
 
+int mix_component(const std::vector<MaterialMix>& mixes, int material, float amount, Vec3f p, Vec3f wo) {
+  const MaterialMix& m = mixes[size_t(material)];
+  if (amount <= 0.0f) return m.materials[0];
+  if (amount >= 1.0f) return m.materials[1];
+  return amount < hash_hit(p, wo, material) ? m.materials[0] : m.materials[1];
+}
+
 int choose_mixed_material(const std::vector<MaterialMix>& mixes, int material, Vec3f p, Vec3f wo) {
-  while (mixes[size_t(material)].is_mix()) {
-    const MaterialMix& m = mixes[size_t(material)];
-    if (m.amount <= 0.0f)
-      material = m.materials[0];
-    else if (m.amount >= 1.0f)
-      material = m.materials[1];
-    else
-      material = m.amount < hash_hit(p, wo, material) ? m.materials[0] : m.materials[1];
-  }
+  while (mixes[size_t(material)].is_mix() && !mixes[size_t(material)].textured())
+    material = mix_component(mixes, material, mixes[size_t(material)].amount, p, wo);
   return material;
 }
 

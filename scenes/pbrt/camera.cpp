@@ -131,10 +131,8 @@ PixelWindow read_film(const PbrtCameraInput& in, CameraDesc& c, PbrtDiagnostics&
     diag.warn(film, "\"whitebalance\" is not applied (Kiln keeps the scene's RGB)");
     diag.unsupported("pbrt film white balance");
   }
-  if (const float m = film.get_float("maxcomponentvalue", kInfinity); m < kInfinity) {
-    diag.warn(film, "\"maxcomponentvalue\" is not applied: Kiln does not clamp sample values (bright outliers stay)");
-    diag.unsupported("pbrt film \"maxcomponentvalue\" clamping");
-  }
+  c.max_component = film.get_float("maxcomponentvalue", kInfinity);
+  if (!(c.max_component > 0.0f)) film.fail(film.line(), "\"maxcomponentvalue\" must be positive");
   if (film.has("savefp16")) film.get_bool("savefp16", true);
   return pixel_window(film, xres, yres, diag);
 }

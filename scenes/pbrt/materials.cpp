@@ -93,13 +93,7 @@ void PbrtBuilder::read_mix(const PbrtParams& ps, MaterialDesc& d) {
   if (names.size() != 2)
     ps.fail(ps.line(), "\"materials\" must name two materials, got " + std::to_string(names.size()));
   MaterialMixDesc mix;
-  const TexturedFloat amount = float_param(ps, "amount", kPbrtDefaultMixAmount);
-  mix.amount = amount.value;
-  if (amount.textured()) {
-    // The choice is made before any material is evaluated (renderer/world/material_mix.h), with no texture lookup.
-    diag_.warn(ps, "a textured \"amount\" is not rendered; the mix uses " + std::to_string(amount.value));
-    diag_.unsupported("textured mix \"amount\"");
-  }
+  mix.amount = float_param(ps, "amount", kPbrtDefaultMixAmount);
   d.mix = mix;
   pending_mixes_.push_back({int(scene_.materials.size()), {names[0], names[1]}, ps.file(), ps.context(), ps.line()});
 }

@@ -703,14 +703,19 @@ class PbrtParser {
     return int(medium_refs_.size()) - 1;
   }
 
-  int resolve_medium(int ref) const {
+  // A name no MakeNamedMedium defines is an error, or under allow_missing_files (its definition may be in a missing
+  // file) vacuum, reported.
+  int resolve_medium(int ref) {
     if (ref < 0) return -1;
     const MediumRef& r = medium_refs_[size_t(ref)];
-    const auto m = builder_.named_medium(r.name);
-    if (!m)
+    if (const auto m = builder_.named_medium(r.name)) return *m;
+    if (!diag_.allow_missing_files)
       throw Error(r.file, location(r.line, "MediumInterface"),
                   "no medium named " + in_quotes(r.name) + " (MakeNamedMedium defines them)");
-    return *m;
+    diag_.warn(r.file, r.line, "MediumInterface",
+               "no medium named " + in_quotes(r.name) + " is defined (in a missing file?); vacuum is used");
+    diag_.unsupported("media defined nowhere (left out: --allow-missing)");
+    return -1;
   }
 
   void resolve_media() {

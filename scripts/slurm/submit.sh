@@ -74,11 +74,12 @@ scene=$(realpath "$scene")
 [ -n "$dir" ] || dir="kiln-$(basename "${scene%.*}")"
 dir=$(realpath -m "$dir")
 
-# The camera's id, resolution, spp and image name, from `kiln info` ("  camera ID: WxH, N spp, ... -> IMAGE").
+# The camera's id, resolution, spp and image name, from `kiln info` ("  camera ID: PROJECTION, WxH, N spp, ... ->
+# IMAGE").
 info=$("$kiln" info "$scene") || die "$scene: kiln info failed"
 found=0
 while IFS= read -r line; do
-  if [[ "$line" =~ ^\ \ camera\ ([^:]+):\ ([0-9]+)x([0-9]+),\ ([0-9]+)\ spp,\ .*\ -\>\ (.*)$ ]]; then
+  if [[ "$line" =~ ^\ \ camera\ ([^:]+):\ [a-z]+,\ ([0-9]+)x([0-9]+),\ ([0-9]+)\ spp,\ .*\ -\>\ (.*)$ ]]; then
     [ -z "$camera" ] || [ "${BASH_REMATCH[1]}" = "$camera" ] || continue
     camera=${BASH_REMATCH[1]} width=${BASH_REMATCH[2]} height=${BASH_REMATCH[3]} camera_spp=${BASH_REMATCH[4]}
     image=${BASH_REMATCH[5]% (Photographic tonemap)}

@@ -42,6 +42,16 @@ inline std::pair<int, std::string> run_kiln_command(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
+// `kiln ARGS`'s exit code and its stdout and stderr together, as the CLI tests check them.
+struct RunResult {
+  int exit_code = -1;
+  std::string output;
+};
+inline RunResult run_kiln(const std::string& args) {
+  auto [code, output] = run_kiln_command(args);
+  return {code, std::move(output)};
+}
+
 // A scene with one material, material 0: a Lambertian of the given albedo (shapes, lights and cameras to be added).
 inline SceneDesc lambertian_scene(float albedo, const std::string& source_path = "") {
   SceneDesc s;

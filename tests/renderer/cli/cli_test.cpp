@@ -17,23 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout + stderr
-};
-
-RunResult run_kiln(const std::string& args) {
-  const std::string cmd = std::string(KILN_BINARY) + " " + args + " 2>&1";
-  RunResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), int(buf.size()), p)) r.output += buf.data();
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
 std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
   const std::string path = dir + "/" + name;
   std::ofstream(path, std::ios::binary) << text;
@@ -177,6 +160,19 @@ TEST_F(CliBadInput, PbrtAlphaNamingASpectrumTexture) {
                               pbrt_scene("Texture \"c\" \"spectrum\" \"constant\" \"rgb value\" [1 1 1]\n"
                                          "Shape \"disk\" \"texture alpha\" \"c\"\n")),
                    "line 7 (Shape \"disk\"): \"alpha\" needs a float texture, but \"c\" is a spectrum texture");
+}
+
+TEST_F(CliBadInput, PbrtMixAmountNamingAnUnknownOrSpectrumTexture) {
+  const std::string materials = "MakeNamedMaterial \"a\" \"string type\" \"diffuse\"\n";
+  expect_bad_input(write_file(dir_, "mix_amount_unknown.pbrt",
+                              pbrt_scene(materials + "Material \"mix\" \"string materials\" [\"a\" \"a\"] "
+                                                     "\"texture amount\" \"nope\"\n")),
+                   "line 7 (Material \"mix\"): \"amount\": no float texture named \"nope\"");
+  expect_bad_input(write_file(dir_, "mix_amount_spectrum.pbrt",
+                              pbrt_scene("Texture \"c\" \"spectrum\" \"checkerboard\"\n" + materials +
+                                         "Material \"mix\" \"string materials\" [\"a\" \"a\"] "
+                                         "\"texture amount\" \"c\"\n")),
+                   "line 8 (Material \"mix\"): \"amount\" needs a float texture, but \"c\" is a spectrum texture");
 }
 
 TEST_F(CliBadInput, PbrtNegativeRadius) {
@@ -401,17 +397,24 @@ TEST(Cli, InfoAllowMissingLeavesMissingFilesOut) {
   const std::string file = std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/missing_files.pbrt";
   const RunResult strict = run_kiln("info " + file);
   EXPECT_EQ(strict.exit_code, 2) << strict.output;
-  EXPECT_NE(strict.output.find("line 6 (Shape \"plymesh\"): cannot find"), std::string::npos) << strict.output;
+  EXPECT_NE(strict.output.find("line 7 (Shape \"plymesh\"): cannot find"), std::string::npos) << strict.output;
   const RunResult r = run_kiln("info --json --allow-missing " + file);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);
-  int missing = 0;
-  for (const auto& n : j["notes"])
-    if (n["outcome"] == "ignored" && n["feature"].get<std::string>().find("missing") != std::string::npos) {
+  int missing = 0, media = 0;
+  for (const auto& n : j["notes"]) {
+    const std::string feature = n["feature"].get<std::string>();
+    if (n["outcome"] == "ignored" && feature.find("missing") != std::string::npos) {
       ++missing;
-      EXPECT_TRUE(n["line"] == 6 || n["line"] == 7) << n.dump();
+      EXPECT_TRUE(n["line"] == 7 || n["line"] == 8) << n.dump();
     }
+    if (n["outcome"] == "substituted" && feature.find("media defined nowhere") != std::string::npos) {
+      ++media;
+      EXPECT_EQ(n["line"], 10) << n.dump();
+    }
+  }
   EXPECT_EQ(missing, 2) << r.output;
+  EXPECT_EQ(media, 1) << r.output;
   EXPECT_EQ(j["spheres"], 1);
 }
 

@@ -15,16 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout + stderr
-};
-
-RunResult run_kiln(const std::string& args) {
-  auto [code, output] = run_kiln_command(args);
-  return {code, std::move(output)};
-}
-
 const std::string kManyLights = std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/many_lights.pbrt";
 const std::string kCoursePath = std::string(KILN_SOURCE_DIR) + "/scenes/killeroo_path.xml";
 

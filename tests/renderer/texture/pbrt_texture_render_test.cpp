@@ -10,8 +10,10 @@
 //     (or +v, or -u) scales the image by cos(angle to the light) / cos(angle of the untilted normal).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "renderer/image_io/image_io.h"
 #include "renderer/integrators/aov.h"
@@ -120,6 +122,146 @@ TEST(PbrtTextureRender, AMixResolvesItsTexturedComponentPerHit) {
   ASSERT_EQ(mixed.image.width(), direct.image.width());
   for (int y = 0; y < kRes; ++y)
     for (int x = 0; x < kRes; ++x) ASSERT_EQ(mixed.image.at(x, y), direct.image.at(x, y)) << x << "," << y;
+}
+
+// ---- mix with a textured amount: each hit evaluates the amount there, then chooses by the hit's hash ----
+
+// Three diffuse reflectances, distinct in every channel; under the light each pixel is reflectance / pi * 2.
+const Rgb kMixA(0.8f, 0.2f, 0.3f), kMixB(0.1f, 0.7f, 0.2f), kMixC(0.3f, 0.1f, 0.9f);
+constexpr float kLightL = 2.0f;
+
+std::string rgb_text(Rgb c) {
+  std::ostringstream s;
+  s << "[" << c.r << " " << c.g << " " << c.b << "]";
+  return s.str();
+}
+
+// Materials "a", "b" (its reflectance a texture: the component's own textures are evaluated too) and "c", and the
+// float textures "checks" (0 on even cells of a 2 x 2 grid over the quad's uv, 1 on odd) and "third" (0.3 everywhere,
+// but a texture: a scale texture is not folded into a constant as a constant texture is).
+std::string mix_materials() {
+  return "Texture \"checks\" \"float\" \"checkerboard\" \"float uscale\" 2 \"float vscale\" 2"
+         " \"float tex1\" 0 \"float tex2\" 1\n"
+         "Texture \"third\" \"float\" \"scale\" \"float tex\" 0.6 \"float scale\" 0.5\n"
+         "Texture \"b_refl\" \"spectrum\" \"scale\" \"rgb tex\" " + rgb_text(kMixB) + " \"float scale\" 1\n"
+         "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"rgb reflectance\" " + rgb_text(kMixA) + "\n"
+         "MakeNamedMaterial \"b\" \"string type\" \"diffuse\" \"texture reflectance\" \"b_refl\"\n"
+         "MakeNamedMaterial \"c\" \"string type\" \"diffuse\" \"rgb reflectance\" " + rgb_text(kMixC) + "\n";
+}
+
+// The closed form of a pixel whose samples shade with a, b, c with probabilities w (maxdepth 1 under the distant
+// light straight above: reflectance / pi * L, the same for every sample), and the standard error of the mean of n
+// such samples (each sample is one of the three values).
+struct MixExpectation {
+  Rgb mean, sigma;
+};
+MixExpectation mix_expectation(std::array<double, 3> w, double n) {
+  MixExpectation e{Rgb(0.0f), Rgb(0.0f)};
+  const std::array<Rgb, 3> r = {kMixA, kMixB, kMixC};
+  for (int ch = 0; ch < 3; ++ch) {
+    double m = 0, m2 = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double v = double(r[size_t(i)][ch]) * kLightL / kPi;
+      m += w[size_t(i)] * v;
+      m2 += w[size_t(i)] * v * v;
+    }
+    e.mean[ch] = float(m);
+    e.sigma[ch] = float(std::sqrt(std::max(m2 - m * m, 0.0) / n));
+  }
+  return e;
+}
+
+// Mean of the pixels inside the cells of the 2 x 2 grid, even cells (0) and odd ones (1), and their counts.
+struct CellMeans {
+  std::array<Rgb, 2> mean{Rgb(0.0f), Rgb(0.0f)};
+  std::array<int, 2> pixels{0, 0};
+};
+CellMeans cell_means(const Rendered& r) {
+  CellMeans m;
+  std::array<std::array<double, 3>, 2> sum{};
+  for_pixels_inside_cells(r.scene.cameras[0], 2, [&](int x, int y, Vec2f uv) {
+    const int odd = (int(std::floor(2 * uv.x)) + int(std::floor(2 * uv.y))) % 2;
+    for (int ch = 0; ch < 3; ++ch) sum[size_t(odd)][size_t(ch)] += r.image.at(x, y)[ch];
+    ++m.pixels[size_t(odd)];
+  });
+  for (int odd = 0; odd < 2; ++odd)
+    for (int ch = 0; ch < 3; ++ch) m.mean[size_t(odd)][ch] = float(sum[size_t(odd)][size_t(ch)] / m.pixels[size_t(odd)]);
+  return m;
+}
+
+// Within 4 standard errors of the closed form (and float rounding).
+void expect_blend(Rgb got, const MixExpectation& e, const std::string& what) {
+  for (int ch = 0; ch < 3; ++ch)
+    EXPECT_NEAR(got[ch], e.mean[ch], 4.0f * e.sigma[ch] + 1e-5f) << what << ", channel " << ch;
+}
+
+constexpr uint32_t kMixSpp = 16;
+
+// An amount of 0 on even cells and 1 on odd ones: every pixel inside a cell is that cell's material, exactly its
+// closed form; an amount of 0.3 everywhere (a texture): the blend 0.7 a + 0.3 b in expectation, and a visible
+// per-hit choice (pixels differ, where a blend of the materials would make them all equal).
+TEST(PbrtTextureRender, MixWithATexturedAmountChoosesPerHit) {
+  const Rendered halves = render(quad_scene(
+      "mix_amount_checks", mix_materials() + "Material \"mix\" \"string materials\" [\"a\" \"b\"] \"texture amount\" \"checks\"\n"), kMixSpp);
+  ASSERT_TRUE(halves.scene.materials.back().mix->amount.textured());
+  const CellMeans cells = cell_means(halves);
+  ASSERT_GT(cells.pixels[0], 400);
+  ASSERT_GT(cells.pixels[1], 400);
+  int wrong = 0;
+  std::string first_wrong;
+  for_pixels_inside_cells(halves.scene.cameras[0], 2, [&](int x, int y, Vec2f uv) {
+    const bool odd = (int(std::floor(2 * uv.x)) + int(std::floor(2 * uv.y))) % 2 == 1;
+    const Rgb want = mix_expectation(odd ? std::array<double, 3>{0, 1, 0} : std::array<double, 3>{1, 0, 0}, 1).mean;
+    const Rgb got = halves.image.at(x, y);
+    if (std::max({std::fabs(got.r - want.r), std::fabs(got.g - want.g), std::fabs(got.b - want.b)}) <= 1e-5f) return;
+    if (wrong++ == 0)
+      first_wrong = std::to_string(x) + "," + std::to_string(y) + ": " + rgb_text(got) + " instead of " + rgb_text(want);
+  });
+  EXPECT_EQ(wrong, 0) << "pixels off their cell's material, the first " << first_wrong;
+
+  const Rendered third = render(quad_scene(
+      "mix_amount_third", mix_materials() + "Material \"mix\" \"string materials\" [\"a\" \"b\"] \"texture amount\" \"third\"\n"), kMixSpp);
+  ASSERT_TRUE(third.scene.materials.back().mix->amount.textured());
+  const CellMeans blend = cell_means(third);
+  const int pixels = blend.pixels[0] + blend.pixels[1];
+  const Rgb mean = (blend.mean[0] * float(blend.pixels[0]) + blend.mean[1] * float(blend.pixels[1])) / float(pixels);
+  expect_blend(mean, mix_expectation({0.7, 0.3, 0.0}, double(pixels) * kMixSpp), "amount 0.3");
+  int differ = 0;
+  for_pixels_inside_cells(third.scene.cameras[0], 2, [&](int x, int y, Vec2f) {
+    differ += third.image.at(x, y) != third.image.at(kRes / 2, kRes / 2);
+  });
+  EXPECT_GT(differ, pixels / 2);
+}
+
+// The same seed gives the same image whatever the thread count: the choice is a function of the hit.
+TEST(PbrtTextureRender, MixWithATexturedAmountIsDeterministic) {
+  const SceneDesc scene = load_scene(quad_scene(
+      "mix_amount_threads", mix_materials() + "Material \"mix\" \"string materials\" [\"a\" \"b\"] \"texture amount\" \"third\"\n"));
+  const auto world = build_world(scene, {});
+  const CameraDesc& cd = scene.cameras[0];
+  const IntegratorSettings s = scene_settings(cd, scene, world->features);
+  const Image one = render_image(*world, cd, s, 4, 7, 1);
+  const Image two = render_image(*world, cd, s, 4, 7, 2, true);
+  for (int y = 0; y < kRes; ++y)
+    for (int x = 0; x < kRes; ++x) ASSERT_EQ(one.at(x, y), two.at(x, y)) << x << "," << y;
+}
+
+// A mix whose component is a mix with a textured amount: the outer mix takes c with probability 0.25 (a constant,
+// chosen when the hit is made, or a texture, chosen with the inner one), else the inner mix, whose amount (0 on
+// even cells, 1 on odd ones) gives a on even cells and b on odd ones.
+TEST(PbrtTextureRender, NestedMixWithATexturedInnerAmount) {
+  for (const char* outer_amount : {"\"float amount\" 0.75", "\"texture amount\" \"three_quarters\""}) {
+    const Rendered r = render(quad_scene(
+        "mix_amount_nested", mix_materials() +
+            "Texture \"three_quarters\" \"float\" \"scale\" \"float tex\" 1.5 \"float scale\" 0.5\n"
+            "MakeNamedMaterial \"inner\" \"string type\" \"mix\" \"string materials\" [\"a\" \"b\"] \"texture amount\" \"checks\"\n"
+            "Material \"mix\" \"string materials\" [\"c\" \"inner\"] " + outer_amount + "\n"), kMixSpp);
+    const CellMeans cells = cell_means(r);
+    expect_blend(cells.mean[0], mix_expectation({0.75, 0.0, 0.25}, double(cells.pixels[0]) * kMixSpp),
+                 std::string(outer_amount) + ", even cells");
+    expect_blend(cells.mean[1], mix_expectation({0.0, 0.75, 0.25}, double(cells.pixels[1]) * kMixSpp),
+                 std::string(outer_amount) + ", odd cells");
+  }
 }
 
 // An 8-bit sRGB PNG of 4 x 4 distinct texels (point filtered): each pixel inside a texel is the white render times

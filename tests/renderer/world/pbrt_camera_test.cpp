@@ -145,6 +145,45 @@ Film "gbuffer" "float iso" [ 400 ] "integer xresolution" [ 8 ] "integer yresolut
   EXPECT_TRUE(s.cameras.at(0).aov_layers);
 }
 
+// Film "maxcomponentvalue" scales a sample whose largest channel is above it down to it, keeping its hue (pbrt-v4's
+// RGBFilm): under a uniform sky of L = (8, 4, 2) every sample, and so every pixel, is (2, 1, 0.5) with the limit 2,
+// stays (8, 4, 2) with the limit 10 or without one; the limit applies after the film's imaging ratio (iso 200
+// doubles the sky to (16, 8, 4) before the limit 10 brings it to (10, 5, 2.5)).
+TEST(PbrtCamera, MaxComponentValueClampsEachSampleKeepingItsHue) {
+  const auto sky_pixel = [](const std::string& name, const std::string& film_params) {
+    const std::string path = tmp_dir("pbrt_camera") + "/" + name + ".pbrt";
+    std::ofstream(path) << "Camera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" [ 4 ] "
+                           "\"integer yresolution\" [ 4 ] "
+                        << film_params << "\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [ 8 4 2 ]\n";
+    const SceneDesc scene = load_scene(path);
+    const Image image = render_like_kiln(scene, *build_scene_world(scene), 4, 1);
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x)
+        EXPECT_NEAR(image.at(x, y).max_component(), image.at(0, 0).max_component(), 1e-5f) << name << " pixel " << x
+                                                                                              << "," << y;
+    return image.at(0, 0);
+  };
+  const auto expect_rgb = [](Rgb got, Rgb want, const std::string& what) {
+    EXPECT_FLOAT_EQ(got.r, want.r) << what;
+    EXPECT_FLOAT_EQ(got.g, want.g) << what;
+    EXPECT_FLOAT_EQ(got.b, want.b) << what;
+  };
+  expect_rgb(sky_pixel("unclamped", ""), Rgb(8, 4, 2), "no limit");
+  expect_rgb(sky_pixel("above", "\"float maxcomponentvalue\" [ 10 ]"), Rgb(8, 4, 2), "under the limit");
+  expect_rgb(sky_pixel("clamped", "\"float maxcomponentvalue\" [ 2 ]"), Rgb(2, 1, 0.5f), "limit 2");
+  expect_rgb(sky_pixel("iso", "\"float iso\" [ 200 ] \"float maxcomponentvalue\" [ 10 ]"), Rgb(10, 5, 2.5f),
+             "imaging ratio, then the limit");
+  const std::string bad = tmp_dir("pbrt_camera") + "/bad_max.pbrt";
+  std::ofstream(bad) << "Film \"rgb\" \"float maxcomponentvalue\" [ -1 ]\nWorldBegin\n";
+  try {
+    (void)load_scene(bad);
+    ADD_FAILURE() << "a negative maxcomponentvalue must be refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad_max.pbrt: line 1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"maxcomponentvalue\" must be positive"), std::string::npos) << e.what();
+  }
+}
+
 // ActiveTransform on the camera: at the shutter's ends the camera is at its two poses, half way it has moved half
 // the distance and turned half the angle (pbrt's interpolation). TransformTimes 0 2 with the shutter 0..1 stops
 // the motion half way through.

@@ -120,10 +120,10 @@ TEST(PbrtMaterials, MixesResolveNamesOnceTheFileIsRead) {
   ASSERT_TRUE(s.materials[1].mix);
   EXPECT_FALSE(s.materials[1].pbrt);
   EXPECT_EQ(s.materials[1].mix->materials, (std::array<int, 2>{0, 3}));
-  EXPECT_EQ(s.materials[1].mix->amount, 0.4f);
+  EXPECT_EQ(s.materials[1].mix->amount, TexturedFloat(0.4f));
   ASSERT_TRUE(s.materials[2].mix);
   EXPECT_EQ(s.materials[2].mix->materials, (std::array<int, 2>{1, 0}));
-  EXPECT_EQ(s.materials[2].mix->amount, 0.5f);  // pbrt's default
+  EXPECT_EQ(s.materials[2].mix->amount, TexturedFloat(0.5f));  // pbrt's default
 }
 
 TEST(PbrtMaterials, BadMixesNameTheirLine) {
