@@ -768,6 +768,7 @@ class PbrtParser {
         m.emission = light->radiance;
         m.two_sided_emission = light->two_sided;
         m.emission_image = light->image;
+        if (light->image && m.uvs.empty()) m.uvs = std::move(s.patch_uvs);
       }
       if (current_object_) {
         m.visible = false;

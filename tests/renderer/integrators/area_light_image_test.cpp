@@ -48,11 +48,21 @@ AttributeBegin
 AttributeEnd
 )";
 
-TEST(AreaLightImage, CameraRaysSeeTheTexelsAtTheSurfacesUv) {
-  const std::string dir = tmp_dir("area_light_image/camera");
+// The same quad as one bilinear patch without "uv": pbrt's patch (u, v), (0,0) at P[0] ... (1,1) at P[3].
+std::string as_bilinear_patch(std::string scene) {
+  const size_t from = scene.find("  Shape"), to = scene.find("AttributeEnd");
+  return scene.replace(from, to - from, "  Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n");
+}
+
+class AreaLightImageShapes : public ::testing::TestWithParam<bool> {};
+
+TEST_P(AreaLightImageShapes, CameraRaysSeeTheTexelsAtTheSurfacesUv) {
+  const bool patch = GetParam();
+  const std::string dir = tmp_dir(patch ? "area_light_image/camera_patch" : "area_light_image/camera");
   const Rgb a(1, 0, 0), b(0, 1, 0), c(0, 0, 1), d(1, 1, 0.5f);
   write_exr(dir + "/image.exr", quadrants(8, a, b, c, d), {}, {});
-  const SceneDesc s = load_scene(write_text(dir + "/quad.pbrt", kQuadScene));
+  const SceneDesc s =
+      load_scene(write_text(dir + "/quad.pbrt", patch ? as_bilinear_patch(kQuadScene) : std::string(kQuadScene)));
   ASSERT_EQ(s.external_files.size(), 1u);
   EXPECT_EQ(std::filesystem::path(s.external_files[0]).filename(), "image.exr");
   const auto w = build_scene_world(s);
@@ -79,6 +89,9 @@ TEST(AreaLightImage, CameraRaysSeeTheTexelsAtTheSurfacesUv) {
   EXPECT_GE(checked, 100);
 }
 
+INSTANTIATE_TEST_SUITE_P(AreaLightImage, AreaLightImageShapes, ::testing::Values(false, true),
+                         [](const auto& param_info) { return param_info.param ? "BilinearPatch" : "TriangleMesh"; });
+
 // A rectangle a x b at height h facing down, its corner above the origin of lit_floor_scene's floor, on the side away
 // from its camera (z < 0, out of the camera's rays); u along x (a), v along -z (b). Emits `emission` x its image
 // when given (image_path), else `emission`.
@@ -102,16 +115,7 @@ void expect_floor_radiance(const MeshDesc& light, double irradiance, const std::
   s.meshes.push_back(light);
   const auto w = build_world(s, {});
   ASSERT_EQ(w->stats.mesh_lights, 1u);
-  const double want = kAlbedo / kPiD * irradiance;
-  for (const char* strategy : {"nee", "brdf", "mis"}) {
-    PathSettings p = kiln_strategy(strategy, PathSettings{}, "test");
-    p.max_depth = 1;
-    p.russian_roulette = false;
-    const Estimate e = estimate_mean(*w, p, s.cameras[0], 40000);
-    EXPECT_NEAR(e.mean, want, kMaxZ * e.stderr_) << what << ", " << strategy << ": " << e.mean << " +- " << e.stderr_
-                                                 << " vs " << want;
-    EXPECT_GT(e.stderr_, 0.0) << what << ", " << strategy;
-  }
+  expect_floor_radiance_under_strategies(*w, s.cameras[0], kAlbedo / kPiD * irradiance, 40000, kMaxZ, what);
 }
 
 TEST(AreaLightImage, ConstantImageLightsAFloorAsItsValueDoes) {
@@ -155,49 +159,37 @@ TEST(AreaLightImage, ImageOnADiskLightsTheFloorAsItsLitSectorAlone) {
   const auto w = build_world(s, {});
   ASSERT_EQ(w->stats.quadric_lights, 1u);
   constexpr double kLitR = 0.5 * kR;
-  const double want = kAlbedo / kPiD * 0.5 * kPiD * kC.r * kLitR * kLitR / (kDiskH * kDiskH + kLitR * kLitR);
-  for (const char* strategy : {"nee", "brdf", "mis"}) {
-    PathSettings p = kiln_strategy(strategy, PathSettings{}, "test");
-    p.max_depth = 1;
-    p.russian_roulette = false;
-    const Estimate e = estimate_mean(*w, p, s.cameras[0], 40000);
-    EXPECT_NEAR(e.mean, want, kMaxZ * e.stderr_) << strategy << ": " << e.mean << " +- " << e.stderr_ << " vs " << want;
-  }
+  const double e = 0.5 * kPiD * kC.r * kLitR * kLitR / (kDiskH * kDiskH + kLitR * kLitR);
+  expect_floor_radiance_under_strategies(*w, s.cameras[0], kAlbedo / kPiD * e, 40000, kMaxZ, "lit quarter");
+}
+
+// `kiln render` of scene text `text` (written as NAME.pbrt) exits 2, names the scene file and each of `expected`,
+// and writes nothing.
+void expect_bad_input(const std::string& dir, const std::string& name, const std::string& text,
+                      const std::vector<std::string>& expected) {
+  std::filesystem::remove_all(dir + "/out");
+  const auto [code, out] =
+      run_kiln_command("render " + write_text(dir + "/" + name + ".pbrt", text) + " -q --spp 1 -o " + dir + "/out");
+  EXPECT_EQ(code, 2) << out;
+  EXPECT_NE(out.find(name + ".pbrt"), std::string::npos) << out;
+  for (const std::string& e : expected) EXPECT_NE(out.find(e), std::string::npos) << "no " << e << " in: " << out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out")) << name;
+}
+
+// The quad scene with its image file named `file` instead.
+std::string with_image(const std::string& file) {
+  std::string text = kQuadScene;
+  return text.replace(text.find("image.exr"), 9, file);
 }
 
 TEST(AreaLightImage, BadInputExitsWithTheFileAndLineAndWritesNothing) {
   const std::string dir = tmp_dir("area_light_image/bad");
-  std::filesystem::remove_all(dir + "/out");
-  write_exr(dir + "/image.exr", quadrants(4, Rgb(1), Rgb(1), Rgb(1), Rgb(1)), {}, {});
-  std::string missing = kQuadScene;
-  missing.replace(missing.find("image.exr"), 9, "nothere.exr");
-  auto [code, out] = run_kiln_command("render " + write_text(dir + "/missing.pbrt", missing) + " -q --spp 1 -o " +
-                                      dir + "/out");
-  EXPECT_EQ(code, 2) << out;
-  EXPECT_NE(out.find("missing.pbrt"), std::string::npos) << out;
-  EXPECT_NE(out.find("nothere.exr"), std::string::npos) << out;
-  EXPECT_NE(out.find("8"), std::string::npos) << out;  // the AreaLightSource's line
-  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
-
+  expect_bad_input(dir, "missing", with_image("nothere.exr"), {"nothere.exr", "8"});  // the AreaLightSource's line
   std::string both = kQuadScene;
   both.replace(both.find("\"float scale\""), 0, "\"rgb L\" [1 1 1] ");
-  std::tie(code, out) =
-      run_kiln_command("render " + write_text(dir + "/both.pbrt", both) + " -q --spp 1 -o " + dir + "/out");
-  EXPECT_EQ(code, 2) << out;
-  EXPECT_NE(out.find("both.pbrt"), std::string::npos) << out;
-  EXPECT_NE(out.find("line 8"), std::string::npos) << out;
-  EXPECT_NE(out.find("\"L\" and \"filename\""), std::string::npos) << out;
-  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
-
+  expect_bad_input(dir, "both", both, {"line 8", "\"L\" and \"filename\""});
   write_text(dir + "/broken.exr", "not an image");
-  std::string broken = kQuadScene;
-  broken.replace(broken.find("image.exr"), 9, "broken.exr");
-  std::tie(code, out) =
-      run_kiln_command("render " + write_text(dir + "/broken.pbrt", broken) + " -q --spp 1 -o " + dir + "/out");
-  EXPECT_EQ(code, 2) << out;
-  EXPECT_NE(out.find("broken.pbrt"), std::string::npos) << out;
-  EXPECT_NE(out.find("broken.exr"), std::string::npos) << out;
-  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  expect_bad_input(dir, "broken", with_image("broken.exr"), {"broken.exr", "line 8"});
 }
 
 }  // namespace

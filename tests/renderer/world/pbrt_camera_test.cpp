@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "core/error.h"
 #include "renderer/render_util.h"
 
 namespace kiln::test {
