@@ -22,8 +22,13 @@ float pdf_li(const Light& light, uint32_t part, const LightQuery& q, Vec3f p_lig
   return mesh && part == prim ? mesh->pdf_triangle_li(q, p_light, part) : 0.0f;
 }
 
-Rgb emitted(const Light& light, Vec3f n, Vec3f w) {
-  return std::visit([&](const auto& l) { return l.emitted(n, w); }, light);
+Rgb emitted(const Light& light, Vec3f n, Vec3f w, const EmitterPoint& at) {
+  return std::visit(
+      [&](const auto& l) {
+        if constexpr (requires { l.emitted(n, w, at); }) return l.emitted(n, w, at);
+        else return l.emitted(n, w);
+      },
+      light);
 }
 
 float power(const Light& light) {

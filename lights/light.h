@@ -38,7 +38,8 @@ float pdf_li(const Light& light, uint32_t part, const LightQuery& q, Vec3f p_lig
 // Radiance leaving a point of an emitting surface with normal n towards direction w (w points away from it).
 // n is the geometric normal as the shape defines it (mesh: winding order; sphere: outward), not face-forwarded.
 // Mesh lights emit on the front side only, spheres outward only; lights that rays cannot hit return 0.
-Rgb emitted(const Light& light, Vec3f n, Vec3f w);
+// at: where on the surface (lights with an emission image read it there; the others ignore it).
+Rgb emitted(const Light& light, Vec3f n, Vec3f w, const EmitterPoint& at = {});
 // Total emitted power (flux) estimate used by the power-proportional selector.
 float power(const Light& light);
 // True when rays can never hit the light (point, spot, directional and the invisible AreaLight): its samples

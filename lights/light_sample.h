@@ -15,6 +15,13 @@ struct LightQuery {
   Vec3f n;  // shading normal, or zero when unknown (e.g. inside a medium)
 };
 
+// Where a ray found an emitting surface, for lights whose radiance varies over it (an emission image): the
+// accelerator's primitive and its (u, v) (barycentrics on triangles, the surface's own (u, v) on quadrics).
+struct EmitterPoint {
+  uint32_t prim = 0;
+  Vec2f hit_uv;
+};
+
 struct LightSample {
   Rgb li;            // radiance arriving at the query point along wi (for delta lights: intensity / d^2 etc.)
   Vec3f wi;          // unit direction from the query point towards the light

@@ -37,19 +37,32 @@ MeshLight::MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t>
   dist_ = Distribution1D(areas);
 }
 
+MeshLight::MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t> indices,
+                     std::shared_ptr<const EmissionImage> image, std::vector<std::array<Vec2f, 3>> tri_uvs,
+                     bool two_sided)
+    : MeshLight(positions, indices, image ? image->mean() : Rgb(0.0f), two_sided) {
+  if (!image) throw Error("LightMesh: no emission image");
+  if (tri_uvs.size() != tris_.size())
+    throw Error("LightMesh: " + std::to_string(tri_uvs.size()) + " triangle (u, v) triplets for " +
+                std::to_string(tris_.size()) + " triangles");
+  image_ = std::move(image);
+  tri_uvs_ = std::move(tri_uvs);
+}
+
 std::optional<LightSample> MeshLight::sample_li(const LightQuery& q, Vec2f u) const {
   if (!(total_area_ > 0.0f)) return std::nullopt;
   float pmf = 0.0f, u_tri = 0.0f;
   const size_t i = dist_.sample(u.x, &pmf, &u_tri);
-  return sample_on(q, tris_[i], pmf, {u_tri, u.y});
+  return sample_on(q, i, pmf, {u_tri, u.y});
 }
 
 std::optional<LightSample> MeshLight::sample_triangle_li(const LightQuery& q, size_t i, Vec2f u) const {
   if (i >= tris_.size()) return std::nullopt;
-  return sample_on(q, tris_[i], 1.0f, u);
+  return sample_on(q, i, 1.0f, u);
 }
 
-std::optional<LightSample> MeshLight::sample_on(const LightQuery& q, const Tri& t, float pmf, Vec2f u) const {
+std::optional<LightSample> MeshLight::sample_on(const LightQuery& q, size_t i, float pmf, Vec2f u) const {
+  const Tri& t = tris_[i];
   if (!(pmf > 0.0f) || !(t.area > 0.0f)) return std::nullopt;
   const Vec2f b = sample_uniform_triangle(u);
   const Vec3f p = t.p0 * (1.0f - b.x - b.y) + t.p1 * b.x + t.p2 * b.y;
@@ -61,7 +74,7 @@ std::optional<LightSample> MeshLight::sample_on(const LightQuery& q, const Tri& 
   const float cos_l = two_sided_ ? std::abs(dot(t.n, wi)) : -dot(t.n, wi);
   if (!(cos_l > 0.0f)) return std::nullopt;  // q sees the back (non-emitting) side, or the triangle edge-on
   LightSample s;
-  s.li = radiance_;
+  s.li = radiance_at(i, b);
   s.wi = wi;
   s.p_light = p;
   s.n_light = t.n;

@@ -34,6 +34,13 @@ QuadricLight::QuadricLight(const Quadric& quadric, const Transform& to_world, bo
   world_area_ = float(sum / (kAreaQuadrature * kAreaQuadrature));
 }
 
+QuadricLight::QuadricLight(const Quadric& quadric, const Transform& to_world, bool flip,
+                           std::shared_ptr<const EmissionImage> image, bool two_sided)
+    : QuadricLight(quadric, to_world, flip, image ? image->mean() : Rgb(0.0f), two_sided) {
+  if (!image) throw Error("area light: no emission image");
+  image_ = std::move(image);
+}
+
 QuadricLight::SurfaceSample QuadricLight::at_object_point(Vec3f p_obj) const {
   const Vec3f m_n = to_world_.normal(quadric_.normal(p_obj));  // M^-T n
   const float len = length(m_n);
@@ -57,11 +64,12 @@ float QuadricLight::solid_angle_pdf(const LightQuery& q, const SurfaceSample& s,
 }
 
 std::optional<LightSample> QuadricLight::sample_li(const LightQuery& q, Vec2f u) const {
-  const SurfaceSample s = at_object_point(quadric_.sample_area(u));
+  const Vec3f p_obj = quadric_.sample_area(u);
+  const SurfaceSample s = at_object_point(p_obj);
   LightSample ls;
   ls.pdf = solid_angle_pdf(q, s, ls.wi, ls.distance);
   if (!(ls.pdf > 0.0f)) return std::nullopt;
-  ls.li = radiance_;
+  ls.li = image_ ? image_->radiance(quadric_.uv(p_obj)) : radiance_;
   ls.p_light = s.p;
   ls.n_light = s.n;
   return ls;

@@ -3,15 +3,19 @@
 //   flip               the emitting side is opposite the natural normal (pbrt's ReverseOrientation exclusive-or a
 //                      mirroring to_world; the accelerators report the same oriented normal)
 //   radiance           constant radiance L, from the side of the oriented normal only, or from both (two_sided)
+//   image              instead of L, an image over pbrt's (u, v) of the quadric (lights/emission_image.h);
+//                      radiance() and power() then take its mean
 // Samples are uniform in the shape's object-space area (Quadric::sample_area) and carry the exact world density:
 // a surface element's area grows by J = |det M| |M^-T n| under the affine map M, so the world area density is
 // 1 / (A_obj J) and the solid-angle density d^2 / (|cos theta_l| A_obj J). Points whose emitting side faces away
 // from the query give no sample (and density 0 in pdf_li), as they send it no light.
 #pragma once
 #include <array>
+#include <memory>
 
 #include "core/quadric.h"
 #include "core/transform.h"
+#include "lights/emission_image.h"
 #include "lights/light_sample.h"
 
 namespace kiln {
@@ -20,11 +24,16 @@ class QuadricLight {
  public:
   // Throws kiln::Error when to_world is singular.
   QuadricLight(const Quadric& quadric, const Transform& to_world, bool flip, Rgb radiance, bool two_sided);
+  QuadricLight(const Quadric& quadric, const Transform& to_world, bool flip,
+               std::shared_ptr<const EmissionImage> image, bool two_sided);
 
   std::optional<LightSample> sample_li(const LightQuery& q, Vec2f u) const;
   float pdf_li(const LightQuery& q, Vec3f p_light, Vec3f n_light, uint32_t prim) const;
-  // n: the oriented geometric normal at the emitting point (Hit::ng of the quadric).
-  Rgb emitted(Vec3f n, Vec3f w) const { return two_sided_ || dot(n, w) > 0.0f ? radiance_ : Rgb{}; }
+  // n: the oriented geometric normal at the emitting point (Hit::ng of the quadric); at.hit_uv: its (u, v).
+  Rgb emitted(Vec3f n, Vec3f w, const EmitterPoint& at = {}) const {
+    if (!(two_sided_ || dot(n, w) > 0.0f)) return Rgb{};
+    return image_ ? image_->radiance(at.hit_uv) : radiance_;
+  }
   // pi * area * lum(L) per emitting side.
   float power() const { return kPi * world_area_ * radiance_.luminance() * (two_sided_ ? 2.0f : 1.0f); }
   static constexpr bool kDelta = false;
@@ -36,6 +45,7 @@ class QuadricLight {
   const Transform& to_world() const { return to_world_; }
   bool flip() const { return flip_; }
   bool two_sided() const { return two_sided_; }
+  // The constant radiance, or an emission image's mean.
   Rgb radiance() const { return radiance_; }
 
  private:
@@ -54,6 +64,7 @@ class QuadricLight {
   bool two_sided_ = false;
   float abs_det_ = 1.0f;
   float world_area_ = 0.0f;
+  std::shared_ptr<const EmissionImage> image_;  // null: radiance_ everywhere
 };
 
 }  // namespace kiln

@@ -314,6 +314,13 @@ struct ShapeAlphaDesc {
   bool cuts() const { return texture >= 0 || value < 1.0f; }
 };
 
+// An area light whose radiance is an image over the shape's (u, v) (pbrt-v4's "diffuse" area light with "filename"):
+// radiance = the shape's `emission` (pbrt's "scale", grey) x the image at (u, 1 - v) (lights/emission_image.h).
+struct EmissionImageDesc {
+  std::string path;     // resolved; also in SceneDesc::external_files
+  std::string element;  // where the scene asks for it (e.g. "line 12 (AreaLightSource ...)"), for messages
+};
+
 struct MeshDesc {
   std::string name;     // for messages, e.g. "Mesh id=3"
   std::vector<Vec3f> positions;
@@ -325,6 +332,7 @@ struct MeshDesc {
   Transform to_world;
   std::optional<Rgb> emission;  // LightMesh radiance (front side)
   bool two_sided_emission = false;  // emission leaves both sides (pbrt "twosided" area lights)
+  std::optional<EmissionImageDesc> emission_image;  // radiance = emission x this image at the hit's (u, v)
   bool is_instance_base = false;  // referenced by a MeshInstance (kept in object space for instancing)
   bool visible = true;            // false: only a prototype for instances, not itself in the scene
   int subdivide = 0;              // Loop subdivision levels requested for this mesh
@@ -359,10 +367,25 @@ struct QuadricDesc {
   int material = -1;
   std::optional<Rgb> emission;
   bool two_sided_emission = false;
+  std::optional<EmissionImageDesc> emission_image;  // radiance = emission x this image at pbrt's (u, v)
   Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
   ShapeAlphaDesc alpha;
   MediumInterfaceDesc media;
 };
+
+// A sphere as a whole-turn quadric sphere, where pbrt's (u, v) are needed (an alpha texture, an emission image).
+inline QuadricDesc quadric_of_sphere(const SphereDesc& s) {
+  QuadricDesc q;
+  q.name = s.name;
+  q.quadric = *make_quadric(QuadricType::Sphere, s.radius, 0.0f, 0.0f, -s.radius, s.radius, 360.0f).quadric;
+  q.to_world = s.to_world * Transform::translate(s.center);
+  q.material = s.material;
+  q.emission = s.emission;
+  q.motion = s.motion;
+  q.alpha = s.alpha;
+  q.media = s.media;
+  return q;
+}
 
 struct InstanceDesc {
   std::string name;

@@ -82,4 +82,9 @@ Image read_image(const std::string& path) {
   return img;
 }
 
+bool is_float_image_format(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
+}
+
 }  // namespace kiln

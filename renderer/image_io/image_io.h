@@ -56,5 +56,8 @@ ExrHeader read_exr_header(const std::string& path);
 // EXR, PNG (float RGB, stored value / 255 or / 65535, no transfer curve), or any format OpenImageIO reads (through
 // the plugin). Throws kiln::Error naming the file when it cannot be read.
 Image read_image(const std::string& path);
+// True for the float formats (EXR, HDR, PFM), which hold linear values; the others (PNG, JPEG, TGA, ...) store
+// sRGB-encoded 8- or 16-bit values, which pbrt-v4 decodes when it reads an image for a light.
+bool is_float_image_format(const std::string& path);
 
 }  // namespace kiln

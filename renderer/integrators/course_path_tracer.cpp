@@ -118,7 +118,7 @@ Rgb course_path(const RenderContext& ctx, const CoursePathSettings& s, const Ray
       const ArrivalRoulette rr =
           roulette && depth > 0 ? course_roulette(s.roulette, potential, dim, sampler, p.beta) : ArrivalRoulette{};
       if (si.light >= 0 && (p.after_specular || !use_nee))
-        L += p.beta * emitted(w.lights[size_t(si.light)], si.ng, wo) * (1.0f + rr.extra);
+        L += p.beta * emitted_at(w, si, wo) * (1.0f + rr.extra);
       if (!resolve_material(ctx, si, textured, p, L)) break;
       const bool last_vertex = depth >= max_depth || rr.stop;
       if (last_vertex && !use_nee) break;

@@ -65,7 +65,7 @@ Rgb trace_recursive(const RenderContext& ctx, const CourseRaySettings& s, const 
   SurfaceInteraction si = make_interaction(w, ray, hit);
   const Vec3f wo = -ray.d;
   Rgb L(0.0f);
-  if (si.light >= 0) L += emitted(w.lights[size_t(si.light)], si.ng, wo);
+  if (si.light >= 0) L += emitted_at(w, si, wo);
   if (!si.material) {
     see_resolved_surface(visible, si, ray, travelled, nullptr);
     return L;

@@ -43,7 +43,7 @@ Rgb kiln_path(const RenderContext& ctx, const PathSettings& s, const Ray& camera
     SurfaceInteraction si = make_interaction<kMeshesOnly>(w, p.ray, hit);
     const Vec3f wo = -p.ray.d;
     if (si.light >= 0) {
-      const Rgb le = emitted(w.lights[size_t(si.light)], si.ng, wo);
+      const Rgb le = emitted_at(w, si, wo);
       if (!le.is_black()) {
         const float light_pdf = p.after_specular || !s.mis ? 0.0f : emitter_pdf(w, si.light, prev, si);
         L += p.beta * le * emission_weight(s, use_nee, p.after_specular, prev_pdf, light_pdf);

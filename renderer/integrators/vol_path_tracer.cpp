@@ -253,7 +253,7 @@ class VolumetricPath {
 
   void add_surface_emission(const SurfaceInteraction& si) {
     if (si.light < 0) return;
-    const Rgb le = emitted(w_.lights[size_t(si.light)], si.ng, -p_.ray.d);
+    const Rgb le = emitted_at(w_, si, -p_.ray.d);
     if (le.is_black()) return;
     if (p_.after_specular || !use_nee_) {
       L_ += p_.beta * le / average(r_u_);

@@ -1,7 +1,6 @@
 #include "renderer/world/environment_map.h"
 
 #include <cmath>
-#include <filesystem>
 
 #include "core/equal_area.h"
 #include "core/error.h"
@@ -9,14 +8,6 @@
 
 namespace kiln {
 namespace {
-
-// Float formats hold linear values; everything else (PNG, JPEG, TGA, ...) stores sRGB-encoded 8- or 16-bit values,
-// which pbrt-v4 decodes.
-bool is_float_format(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
-}
 
 Image read_map(const SceneDesc& scene, const EnvLightDesc& env) {
   try {
@@ -87,7 +78,7 @@ ImageInfiniteLight make_environment_light(const SceneDesc& scene, const EnvLight
                                           EnvMapSampling sampling, std::vector<std::string>& warnings) {
   Image img = read_map(scene, env);
   const EnvMapPlacement placement = placement_of(scene, env, img, warnings);
-  if (env.format != EnvMapFormat::LatLongYUp && !is_float_format(env.image_path))
+  if (env.format != EnvMapFormat::LatLongYUp && !is_float_image_format(env.image_path))
     for (Rgb& c : img.pixels())
       for (int i = 0; i < 3; ++i) c[i] = srgb_to_linear(c[i]);
   float scale = env.scale;

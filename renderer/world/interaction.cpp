@@ -142,6 +142,7 @@ SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hi
   si.t = hit.t;
   si.shape = hit.shape;
   si.prim = hit.prim;
+  si.hit_uv = Vec2f(hit.u, hit.v);
   if (sd.material >= 0) {
     const int m = world.features & kFeatureMix ? choose_mixed_material(world.mixes, sd.material, si.p, -ray.d)
                                                 : sd.material;

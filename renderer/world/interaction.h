@@ -15,6 +15,7 @@ struct SurfaceInteraction {
   const Material* material = nullptr;
   int light = -1;   // index into World::lights when the surface emits
   uint32_t shape = 0, prim = 0;
+  Vec2f hit_uv;     // the accelerator's (u, v): barycentrics on triangles, the surface's (u, v) on quadrics
   // Set only on shapes with textures (ShapeData::textures >= 0); untextured hits leave them unset and unread.
   int textures = -1;  // index into World::textures->bindings
   Vec2f uv;           // texture coordinates (spec §7-§8: mesh vertices' uv, sphere (theta, phi) mapping)
@@ -26,5 +27,10 @@ struct SurfaceInteraction {
 // and the shape dispatch is compiled out (the path tracer's specialisation; explicit instantiations for both).
 template <bool kMeshesOnly = false>
 SurfaceInteraction make_interaction(const World& world, const Ray& ray, const Hit& hit);
+
+// Radiance the emitting surface at si (si.light >= 0) sends towards wo.
+inline Rgb emitted_at(const World& world, const SurfaceInteraction& si, Vec3f wo) {
+  return emitted(world.lights[size_t(si.light)], si.ng, wo, EmitterPoint{si.prim, si.hit_uv});
+}
 
 }  // namespace kiln

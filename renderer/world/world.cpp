@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "renderer/world/alpha_cutouts.h"
+#include "renderer/world/emission_images.h"
 #include "renderer/world/environment_map.h"
 #include "renderer/texture/scene_textures.h"
 #include "renderer/world/world_media.h"
@@ -107,20 +108,6 @@ int32_t shape_animation(World& w, const std::string& name, const Transform& star
   ++w.stats.moving_shapes;
   w.geometry.motions.push_back(a);
   return int32_t(w.geometry.motions.size() - 1);
-}
-
-// A sphere with an alpha cut-out is rendered as a whole-turn quadric sphere: pbrt's (u, v) for its alpha texture.
-QuadricDesc quadric_of_sphere(const SphereDesc& s) {
-  QuadricDesc q;
-  q.name = s.name;
-  q.quadric = *make_quadric(QuadricType::Sphere, s.radius, 0.0f, 0.0f, -s.radius, s.radius, 360.0f).quadric;
-  q.to_world = s.to_world * Transform::translate(s.center);
-  q.material = s.material;
-  q.emission = s.emission;
-  q.motion = s.motion;
-  q.alpha = s.alpha;
-  q.media = s.media;
-  return q;
 }
 
 AreaLight make_area_light(const AreaLightDesc& d) {
@@ -289,6 +276,9 @@ class WorldBuilder {
     sd.media = medium_interface(m.media, m.name);
     sd.smooth = m.smooth || !normals.empty();
     sd.textures = bind_textures(m.textures, m.material, m.to_world);
+    if (m.emission && !m.emission->is_black())  // before the uvs may be moved into the world
+      sd.light = add_shape_light(mesh_light(m, tm, has_uvs ? std::span<const Vec2f>(uvs) : std::span<const Vec2f>()),
+                                 w_.stats.mesh_lights, kFeatureMeshLights);
     if (has_uvs && (sd.textures >= 0 || m.alpha.texture >= 0)) {  // alpha textures read uvs too
       sd.uvs = int(w_.uvs.size());
       if (taken) w_.uvs.push_back(std::move(taken->uvs));
@@ -310,9 +300,6 @@ class WorldBuilder {
       w_.normals.push_back(vertex_normals(tm));
     }
     if (sd.smooth) w_.features |= kFeatureSmoothNormals;
-    if (m.emission && !m.emission->is_black())
-      sd.light = add_shape_light(MeshLight(tm.p, tm.idx, *m.emission, m.two_sided_emission), w_.stats.mesh_lights,
-                                 kFeatureMeshLights);
     w_.stats.triangles += tm.triangle_count();
     ++w_.stats.meshes;
     WorldGeometry& g = w_.geometry;
@@ -321,6 +308,19 @@ class WorldBuilder {
     g.meshes.push_back(std::move(tm));
     w_.shape_data.push_back(sd);
     w_.features |= kFeatureTriangles;
+  }
+
+  // A mesh's light: its radiance, or its emission image over its (u, v) (pbrt's default (u, v) without uvs).
+  MeshLight mesh_light(const MeshDesc& m, const TriangleMesh& tm, std::span<const Vec2f> uvs) {
+    if (!m.emission_image) return MeshLight(tm.p, tm.idx, *m.emission, m.two_sided_emission);
+    return MeshLight(tm.p, tm.idx, emission_images_.get(*m.emission_image, *m.emission), triangle_uvs(tm.idx, uvs),
+                     m.two_sided_emission);
+  }
+
+  QuadricLight quadric_light(const QuadricDesc& q) {
+    if (!q.emission_image) return QuadricLight(q.quadric, q.to_world, q.flip, *q.emission, q.two_sided_emission);
+    return QuadricLight(q.quadric, q.to_world, q.flip, emission_images_.get(*q.emission_image, *q.emission),
+                        q.two_sided_emission);
   }
 
   void add_spheres() {
@@ -369,8 +369,7 @@ class WorldBuilder {
         sd.material = q.material;
         sd.media = medium_interface(q.media, q.name);
         if (q.emission && !q.emission->is_black())
-          sd.light = add_shape_light(QuadricLight(q.quadric, q.to_world, q.flip, *q.emission, q.two_sided_emission),
-                                     w_.stats.quadric_lights, kFeatureQuadricLights);
+          sd.light = add_shape_light(quadric_light(q), w_.stats.quadric_lights, kFeatureQuadricLights);
         add_alpha(uint32_t(g.shapes.size()), q.alpha, -1, q.name, sd.light >= 0);
         g.shapes.push_back(
             Shape{ShapeKind::Quadric, uint32_t(g.quadrics.size()), shape_motion(w_, q.name, q.motion, sd.light)});
@@ -496,6 +495,7 @@ class WorldBuilder {
   const WorldOptions& options_;
   std::vector<std::optional<MeshArrays>>* taken_;
   std::vector<QuadricDesc> cut_spheres_;  // spheres with an alpha cut-out, built as quadric spheres
+  EmissionImages emission_images_{scene_};
   std::unique_ptr<World> world_;
   World& w_;
   std::vector<int> prototype_of_;  // mesh index -> index into WorldGeometry::prototypes, or -1

@@ -36,8 +36,9 @@ using PbrtResolve = std::function<std::string(const std::string& name, int line)
 
 // An AreaLightSource in effect: the shapes that follow emit it.
 struct PbrtAreaLight {
-  Rgb radiance;
+  Rgb radiance;  // with an image: its multiplier (pbrt's "scale")
   bool two_sided = false;
+  std::optional<EmissionImageDesc> image;  // pbrt's "filename"
 };
 
 // A named texture (Texture directive): float and spectrum textures have separate names, as in pbrt-v4.

@@ -98,11 +98,18 @@ std::optional<PbrtAreaLight> PbrtBuilder::make_area_light(const std::string& typ
     return std::nullopt;
   }
   PbrtAreaLight a;
-  a.radiance = light_spectrum(ps, "L") * ps.get_float("scale", 1.0f);
+  const float scale = ps.get_float("scale", 1.0f);
   a.two_sided = ps.get_bool("twosided", false);
   if (const auto f = ps.find_string("filename")) {
-    diag_.warn(ps, "image emission (" + in_quotes(*f) + ") is not rendered; \"L\" is used");
-    diag_.unsupported("textured area lights (pbrt \"filename\")");
+    if (ps.has("L")) ps.fail(ps.line(), "cannot have both \"L\" and \"filename\" (pbrt-v4 refuses it too)");
+    EmissionImageDesc image;
+    image.path = resolve_(*f, ps);
+    image.element = (ps.file() == scene_.source_path ? "" : ps.file() + ": ") + ps.location(ps.line());
+    scene_.external_files.push_back(image.path);
+    a.image = std::move(image);
+    a.radiance = Rgb(scale);
+  } else {
+    a.radiance = light_spectrum(ps, "L") * scale;
   }
   if (ps.has("power")) {
     ps.get_float("power", -1.0f);

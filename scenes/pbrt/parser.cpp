@@ -767,6 +767,8 @@ class PbrtParser {
       if (light) {
         m.emission = light->radiance;
         m.two_sided_emission = light->two_sided;
+        m.emission_image = light->image;
+        if (light->image && m.uvs.empty()) m.uvs = std::move(s.patch_uvs);
       }
       if (current_object_) {
         m.visible = false;
@@ -786,8 +788,22 @@ class PbrtParser {
       if (light) {
         q.emission = light->radiance;
         q.two_sided_emission = light->two_sided;
+        q.emission_image = light->image;
       }
       (current_object_ ? objects_[*current_object_].quadrics : scene_.quadrics).push_back(q);
+      return;
+    }
+    if (light && light->image) {  // a whole-turn quadric sphere: pbrt's (u, v) for the image, both sides
+      if (motion) unmoved_quadric(line, ps.context());
+      QuadricDesc q = quadric_of_sphere(*s.sphere);
+      q.material = material;
+      q.to_world = to_world * Transform::translate(s.sphere->center);
+      q.flip = flipped;
+      q.media = gs_.media;
+      q.emission = light->radiance;
+      q.two_sided_emission = light->two_sided;
+      q.emission_image = light->image;
+      scene_.quadrics.push_back(q);
       return;
     }
     SphereDesc sp = *s.sphere;

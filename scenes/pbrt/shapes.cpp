@@ -73,7 +73,22 @@ MeshDesc triangle_mesh(const PbrtParams& ps, const std::string& name) {
   return m;
 }
 
-MeshDesc bilinear_mesh(const PbrtParams& ps, const std::string& name, PbrtDiagnostics& diag) {
+// pbrt's (u, v) of the patches' corners as per-vertex uvs; empty when a vertex is a different corner of two patches.
+std::vector<Vec2f> patch_corner_uvs(const std::vector<uint32_t>& quads, size_t vertices) {
+  constexpr Vec2f kUnset(-1.0f, -1.0f);
+  const Vec2f corner[4] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  std::vector<Vec2f> uv(vertices, kUnset);
+  for (size_t i = 0; i < quads.size(); ++i) {
+    Vec2f& at = uv[quads[i]];
+    const Vec2f want = corner[i % 4];
+    if (at.x != kUnset.x && (at.x != want.x || at.y != want.y)) return {};
+    at = want;
+  }
+  return uv;
+}
+
+MeshDesc bilinear_mesh(const PbrtParams& ps, const std::string& name, PbrtDiagnostics& diag,
+                       std::vector<Vec2f>& patch_uvs) {
   MeshDesc m;
   m.name = name;
   m.positions = required_points(ps);
@@ -82,6 +97,7 @@ MeshDesc bilinear_mesh(const PbrtParams& ps, const std::string& name, PbrtDiagno
   m.normals = ps.get_normals("N");
   m.uvs = ps.get_point2s("uv");
   check_vertex_data(ps, m);
+  if (m.uvs.empty()) patch_uvs = patch_corner_uvs(quads, m.positions.size());
   size_t non_planar = 0;
   m.indices.reserve(quads.size() / 4 * 6);
   for (size_t q = 0; q + 3 < quads.size(); q += 4) {
@@ -182,7 +198,7 @@ PbrtShape make_pbrt_shape(const std::string& type, const PbrtParams& ps, const P
   else if (type == "loopsubdiv")
     out.mesh = loop_mesh(ps, name);
   else if (type == "bilinearmesh")
-    out.mesh = bilinear_mesh(ps, name, ctx.diagnostics);
+    out.mesh = bilinear_mesh(ps, name, ctx.diagnostics, out.patch_uvs);
   else if (type == "sphere")
     sphere(ps, name, out);
   else if (type == "disk")

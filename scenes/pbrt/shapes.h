@@ -31,6 +31,10 @@ struct PbrtShape {
   std::optional<MeshDesc> mesh;
   std::optional<SphereDesc> sphere;
   std::optional<QuadricDesc> quadric;
+  // A "bilinearmesh" without "uv": pbrt's (u, v) of its patch corners per vertex ((0,0), (1,0), (0,1), (1,1)), when
+  // no vertex is two different corners; empty otherwise. Only what reads them (an emission image) takes them: the
+  // mesh's triangles otherwise keep the per-triangle default.
+  std::vector<Vec2f> patch_uvs;
   bool empty() const { return !mesh && !sphere && !quadric; }
 };
 

@@ -36,6 +36,21 @@ inline SceneDesc lit_floor_scene(float albedo, const std::string& source_path = 
   return s;
 }
 
+// lit_floor_scene's radiance at the origin (camera cam of world w) under NEE, BSDF sampling and MIS, one bounce and no
+// roulette, each within max_z standard errors of want (albedo / pi x the irradiance there), over n samples.
+inline void expect_floor_radiance_under_strategies(const World& w, const CameraDesc& cam, double want, uint32_t n,
+                                                   double max_z, const std::string& what) {
+  for (const char* strategy : {"nee", "brdf", "mis"}) {
+    PathSettings p = kiln_strategy(strategy, PathSettings{}, "test");
+    p.max_depth = 1;
+    p.russian_roulette = false;
+    const Estimate e = estimate_mean(w, p, cam, n);
+    EXPECT_NEAR(e.mean, want, max_z * e.stderr_)
+        << what << ", " << strategy << ": " << e.mean << " +- " << e.stderr_ << " vs " << want;
+    EXPECT_GT(e.stderr_, 0.0) << what << ", " << strategy;
+  }
+}
+
 // A Lambertian ball of the given albedo (material 0, radius 1 at the origin) filling the view of an 8 x 8 camera.
 inline SceneDesc ball_scene(float albedo, const std::string& source_path) {
   SceneDesc s = lambertian_scene(albedo, source_path);

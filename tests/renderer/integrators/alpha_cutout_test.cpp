@@ -98,15 +98,7 @@ SceneDesc half_open_occluder(bool columns) {
 void expect_floor_radiance(const SceneDesc& s, double irradiance, const char* what) {
   const auto w = build_world(s, {});
   ASSERT_TRUE(w->features & kFeatureAlpha);
-  const double want = kAlbedo / kPiD * irradiance;
-  for (const char* strategy : {"nee", "brdf", "mis"}) {
-    PathSettings p = kiln_strategy(strategy, PathSettings{}, "test");
-    p.max_depth = 1;
-    p.russian_roulette = false;
-    const Estimate e = estimate_mean(*w, p, s.cameras[0], 60000);
-    EXPECT_NEAR(e.mean, want, kMaxZ * e.stderr_)
-        << what << ", " << strategy << ": " << e.mean << " +- " << e.stderr_ << " vs " << want;
-  }
+  expect_floor_radiance_under_strategies(*w, s.cameras[0], kAlbedo / kPiD * irradiance, 60000, kMaxZ, what);
 }
 
 constexpr double kX0 = kLightX - 0.5, kX1 = kLightX + 0.5, kZ0 = kLightZ - 0.5, kZ1 = kLightZ + 0.5;
