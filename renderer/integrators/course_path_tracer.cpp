@@ -129,7 +129,8 @@ Rgb course_path(const RenderContext& ctx, const CoursePathSettings& s, const Ray
       const bool split = kDelta && m.has_delta() && branches.room_for_split();
 
       if (use_nee && m.has_surface())
-        if (const auto dl = sample_direct_light(w, si, frame, wo, wo_l, dim, p.ray.time, sampler, c))
+        if (const auto dl = sample_direct_light(w, si, frame, wo_l, dim, p.ray.time, sampler, c);
+            dl && consistent_sides(si, wo, frame.to_world(dl->wi_local), wo_l, dl->wi_local))
           L += p.beta * dl->value * (1.0f + rr.extra);
       if (last_vertex) break;
 
@@ -142,7 +143,9 @@ Rgb course_path(const RenderContext& ctx, const CoursePathSettings& s, const Ray
       if constexpr (kDielectric) {
         if (roulette && !ds->specular && is_dielectric(m) && wo_l.z < 0.0f) break;
       }
-      if (!scatter(p, si, frame, wo, wo_l, *ds)) break;
+      // The course refuses directions the shading and geometric normals disagree on (no light through a surface).
+      if (!consistent_sides(si, wo, frame.to_world(ds->wi_local), wo_l, ds->wi_local) || !scatter(p, si, frame, *ds))
+        break;
       // Delta bounces, which the course follows deterministically, leave the potential alone.
       if (!ds->specular) potential *= ds->f;
       // Expected mode ends paths with Kiln's roulette, from Kiln's depth on.

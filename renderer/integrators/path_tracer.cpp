@@ -57,7 +57,7 @@ Rgb kiln_path(const RenderContext& ctx, const PathSettings& s, const Ray& camera
     const uint32_t dim = vertex_dimension(depth);
 
     if (use_nee && m.has_surface()) {
-      if (const auto dl = sample_direct_light(w, si, frame, wo, wo_l, dim, p.ray.time, sampler, c)) {
+      if (const auto dl = sample_direct_light(w, si, frame, wo_l, dim, p.ray.time, sampler, c)) {
         const float weight =
             s.mis && !dl->delta
                 ? power_heuristic(dl->light_pdf, direction_pdf<kDelta>(s.directions, m, wo_l, dl->wi_local, false))
@@ -68,7 +68,7 @@ Rgb kiln_path(const RenderContext& ctx, const PathSettings& s, const Ray& camera
 
     sampler.set_dimension(dim + kLobeDimension);
     const auto ds = sample_direction<kDelta>(s.directions, m, wo_l, sampler, false);
-    if (!ds || !scatter(p, si, frame, wo, wo_l, *ds)) break;
+    if (!ds || !scatter(p, si, frame, *ds)) break;
     prev_pdf = ds->pdf;
     prev = LightQuery{si.p, si.ns};
     if (s.russian_roulette && depth >= s.rr_min_depth && !survives_roulette(p, dim, sampler)) break;

@@ -135,7 +135,7 @@ struct DirectLight {
 // faces away or the BSDF does not scatter towards it.
 // time: the path's instant (the shadow ray's).
 inline std::optional<DirectLight> sample_direct_light(const World& w, const SurfaceInteraction& si, const Frame& frame,
-                                                      Vec3f wo, Vec3f wo_l, uint32_t dim, float time, Sampler& sampler,
+                                                      Vec3f wo_l, uint32_t dim, float time, Sampler& sampler,
                                                       RayCounters& c) {
   sampler.set_dimension(dim + kLightChoiceDimension);
   const LightQuery q{si.p, si.ns};
@@ -145,7 +145,6 @@ inline std::optional<DirectLight> sample_direct_light(const World& w, const Surf
   const auto ls = sample_li(w.lights[chosen->light], chosen->part, q, u);
   if (!ls || !(ls->pdf > 0.0f) || ls->li.is_black()) return std::nullopt;
   const Vec3f wi_l = frame.to_local(ls->wi);
-  if (!consistent_sides(si, wo, ls->wi, wo_l, wi_l)) return std::nullopt;
   const Rgb f = si.material->eval(wo_l, wi_l);
   if (f.is_black() || query_occluded(w, spawn_ray_to(si.p, si.ng, ls->p_light, time, si.extent), c)) return std::nullopt;
   const float light_pdf = ls->pdf * chosen->pmf;

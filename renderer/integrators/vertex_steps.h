@@ -67,12 +67,12 @@ template <bool kDielectric>
   }
 }
 
-// The path follows the sampled direction ds: its throughput takes f |cos| / pdf and its next ray leaves si. False when
-// the path ends here: the shading frame and the geometry disagree about the side of ds, or the throughput vanished.
-inline bool scatter(PathState& p, const SurfaceInteraction& si, const Frame& frame, Vec3f wo, Vec3f wo_l,
-                    const DirectionSample& ds) {
+// The path follows the sampled direction ds: its throughput takes f |cos| / pdf and its next ray leaves si on the side
+// ds points to. False when the throughput vanished. The shading frame alone decides reflection and transmission, as
+// in pbrt-v4: a direction the shading normal reflects but the geometric one does not goes through the surface (the
+// course's rules refuse it: course_path_tracer.cpp).
+inline bool scatter(PathState& p, const SurfaceInteraction& si, const Frame& frame, const DirectionSample& ds) {
   const Vec3f wi = frame.to_world(ds.wi_local);
-  if (!consistent_sides(si, wo, wi, wo_l, ds.wi_local)) return false;
   p.beta *= ds.f * (abs_cos_theta(ds.wi_local) / ds.pdf);
   if (p.beta.is_black() || !p.beta.is_finite()) return false;
   if (ds.transmission) p.eta_scale *= sqr(ds.eta);

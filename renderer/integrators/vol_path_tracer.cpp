@@ -291,7 +291,6 @@ class VolumetricPath {
     if (use_nee_ && m.has_surface())
       add_direct_light(LightQuery{si.p, si.ns}, dim, [&](const LightSample& ls) -> std::optional<LightConnection> {
         const Vec3f wi_l = frame.to_local(ls.wi);
-        if (!consistent_sides(si, wo, ls.wi, wo_l, wi_l)) return std::nullopt;
         return LightConnection{m.eval(wo_l, wi_l) * abs_cos_theta(wi_l),
                                direction_pdf<kDelta>(s_.directions, m, wo_l, wi_l, false),
                                spawn_ray_to(si.p, si.ng, ls.p_light, p_.ray.time, si.extent), medium_towards(ls.wi)};
@@ -299,7 +298,7 @@ class VolumetricPath {
 
     sampler_.set_dimension(dim + kLobeDimension);
     const auto ds = sample_direction<kDelta>(s_.directions, m, wo_l, sampler_, false);
-    if (!ds || !scatter(p_, si, frame, wo, wo_l, *ds)) return false;
+    if (!ds || !scatter(p_, si, frame, *ds)) return false;
     r_l_ = r_u_ / ds->pdf;
     prev_ = LightQuery{si.p, si.ns};
     medium_ = medium_towards(p_.ray.d);
