@@ -44,8 +44,9 @@ SCENES = [
 ]
 
 TOKEN = re.compile(r'"[^"]*"|#[^\n]*|[^\s"#\[\]]+')
-# kiln info's feature name for the files --allow-missing leaves out (the table names them itself).
-MISSING_FILE_FEATURE = "files that are missing"
+# kiln info's features that --allow-missing makes of absent files (the files themselves, and the named materials and
+# media they define): the table names the absent files itself.
+ALLOW_MISSING_MARK = "(left out: --allow-missing)"
 
 # Extensions of the data files a scene names (after a trailing .gz): stand-ins are made for the absent ones.
 IMAGE_EXTS = {"exr", "png", "jpg", "jpeg", "tga", "pfm", "hdr", "tif", "tiff", "bmp"}
@@ -168,7 +169,7 @@ def survey(kiln, path):
         return False, (lines[0] if lines else "exit %d" % r.returncode).replace("kiln: error: ", ""), []
     features = [re.sub(r" \(\d+ directives?\)$", "", line[len("not rendered yet: "):])
                 for line in r.stdout.splitlines() if line.startswith("not rendered yet: ")]
-    features = [f for f in features if not f.startswith(MISSING_FILE_FEATURE)]  # counted as absent files
+    features = [f for f in features if ALLOW_MISSING_MARK not in f]  # counted as absent files
     return True, "", features
 
 
