@@ -31,16 +31,7 @@ inline Image cropped(const Image& img, const PixelRect& r) {
 // Camera 0 of `scene_path` rendered at spp with `seed`.
 inline Image render_like_kiln(const std::string& scene_path, uint32_t spp, uint64_t seed) {
   const SceneDesc scene = load_scene(scene_path);
-  const auto world = build_scene_world(scene);
-  const CameraDesc& cd = scene.cameras.at(0);
-  const Camera cam(cd);
-  Film film(cam.width(), cam.height());
-  RenderOptions ro;
-  ro.seed = seed;
-  ro.spp_total = spp;
-  ro.filter = pixel_filter_for(cd, std::nullopt);
-  render_samples(*world, cam, scene_settings(cd, scene, world->features), ro, 0, spp, film);
-  return film.mean();
+  return render_like_kiln(scene, *build_scene_world(scene), spp, seed);
 }
 
 // Block statistics of `image` against `reference` over `crop` of both (the whole images when empty), printed under
