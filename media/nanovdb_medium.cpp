@@ -57,8 +57,24 @@ std::string one_line(const std::string& message) {
   return out;
 }
 
+// A file whose NanoVDB version is not the library's is refused here, before NanoVDB's reader sees it: the reader's
+// own message for that case leaks the version string it formats (nanovdb::Version::c_str mallocs it). Files too short
+// for a header or without NanoVDB's magic number are left to the reader, which says so.
+void check_file_version(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  nanovdb::io::Header header;
+  if (!in.read(reinterpret_cast<char*>(&header), sizeof header) || header.magic != NANOVDB_MAGIC_NUMBER) return;
+  const nanovdb::Version v = header.version;
+  if (v.getMajor() == NANOVDB_MAJOR_VERSION_NUMBER) return;
+  throw Error(path, "",
+              "written by NanoVDB " + std::to_string(v.getMajor()) + "." + std::to_string(v.getMinor()) + "." +
+                  std::to_string(v.getPatch()) + "; Kiln reads files of NanoVDB " +
+                  std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + ".x (rewrite the file with that version)");
+}
+
 // The float grid `name` of the file; an empty handle when the file has no grid of that name.
 nanovdb::GridHandle<nanovdb::HostBuffer> read_float_grid(const std::string& path, const std::string& name) {
+  check_file_version(path);
   nanovdb::GridHandle<nanovdb::HostBuffer> handle;
   try {
     handle = nanovdb::io::readGrid<nanovdb::HostBuffer>(path, name);
