@@ -34,15 +34,25 @@ float sample_grid(const nanovdb::FloatGrid& grid, Vec3f p) {
   return nanovdb::SampleFromVoxels<FloatTree, 1, false>(grid.tree())(index);
 }
 
-// A NanoVDB file starts with its magic number; checking it first turns "some other file" into a clear message
-// instead of NanoVDB's reading of garbage.
-void check_magic(const std::string& path) {
+// A NanoVDB file starts with a header: its magic number, then the version that wrote it. Checking the magic number
+// first turns "some other file" into a clear message instead of NanoVDB's reading of garbage. A version that is not
+// the library's is refused here too, before NanoVDB's reader sees it: the reader's own message for that case leaks
+// the version string it formats (nanovdb::Version::c_str mallocs it). A header cut short after the magic number is
+// left to the reader, which says so.
+void check_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "", "cannot open the NanoVDB file");
-  uint64_t magic = 0;
-  in.read(reinterpret_cast<char*>(&magic), sizeof magic);
-  if (!in || magic != NANOVDB_MAGIC_NUMBER)
+  nanovdb::io::Header header;
+  in.read(reinterpret_cast<char*>(&header.magic), sizeof header.magic);
+  if (!in || header.magic != NANOVDB_MAGIC_NUMBER)
     throw Error(path, "", "is not a NanoVDB file (it does not start with NanoVDB's magic number)");
+  if (!in.read(reinterpret_cast<char*>(&header.version), sizeof header.version)) return;
+  const nanovdb::Version v = header.version;
+  if (v.getMajor() == NANOVDB_MAJOR_VERSION_NUMBER) return;
+  throw Error(path, "",
+              "written by NanoVDB " + std::to_string(v.getMajor()) + "." + std::to_string(v.getMinor()) + "." +
+                  std::to_string(v.getPatch()) + "; Kiln reads files of NanoVDB " +
+                  std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + ".x (rewrite the file with that version)");
 }
 
 // NanoVDB's messages span several lines (a diagnosis, then a tab-indented recommendation): one line for Kiln's.
@@ -57,24 +67,8 @@ std::string one_line(const std::string& message) {
   return out;
 }
 
-// A file whose NanoVDB version is not the library's is refused here, before NanoVDB's reader sees it: the reader's
-// own message for that case leaks the version string it formats (nanovdb::Version::c_str mallocs it). Files too short
-// for a header or without NanoVDB's magic number are left to the reader, which says so.
-void check_file_version(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  nanovdb::io::Header header;
-  if (!in.read(reinterpret_cast<char*>(&header), sizeof header) || header.magic != NANOVDB_MAGIC_NUMBER) return;
-  const nanovdb::Version v = header.version;
-  if (v.getMajor() == NANOVDB_MAJOR_VERSION_NUMBER) return;
-  throw Error(path, "",
-              "written by NanoVDB " + std::to_string(v.getMajor()) + "." + std::to_string(v.getMinor()) + "." +
-                  std::to_string(v.getPatch()) + "; Kiln reads files of NanoVDB " +
-                  std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + ".x (rewrite the file with that version)");
-}
-
 // The float grid `name` of the file; an empty handle when the file has no grid of that name.
 nanovdb::GridHandle<nanovdb::HostBuffer> read_float_grid(const std::string& path, const std::string& name) {
-  check_file_version(path);
   nanovdb::GridHandle<nanovdb::HostBuffer> handle;
   try {
     handle = nanovdb::io::readGrid<nanovdb::HostBuffer>(path, name);
@@ -182,7 +176,7 @@ NanoVdbMedium::NanoVdbMedium(const NanoVdbParams& params, const Transform& mediu
       temperature_offset_(params.temperature_offset),
       temperature_scale_(params.temperature_scale),
       blackbody_(params.blackbody) {
-  check_magic(params.path);
+  check_header(params.path);
   auto grids = std::make_shared<NanoVdbGrids>();
   grids->density_handle = read_float_grid(params.path, params.density_grid);
   if (!grids->density_handle) throw Error(params.path, "", "has no grid named " + quoted(params.density_grid));
