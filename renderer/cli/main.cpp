@@ -2,7 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
-#include "core/worker_threads.h"
+#include "core/process_exit.h"
 #include "renderer/cli/commands.h"
 #include "renderer/cli/converge.h"
 #include "renderer/cli/profile.h"
@@ -16,7 +16,7 @@ constexpr const char* kLightSamplerHelp =
 
 int main(int argc, char** argv) {
   using namespace kiln;
-  const JoinWorkerThreadsOnReturn join_workers;
+  const ExitCleanlyOnReturn exit_cleanly;
   CLI::App app{"Kiln: an Embree-accelerated CPU path tracer for CENG795 XML, CS171 JSON, pbrt-v4 and PLY/OBJ scenes"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("kiln ") + KILN_VERSION);
