@@ -369,6 +369,7 @@ struct QuadricDesc {
   bool two_sided_emission = false;
   std::optional<EmissionImageDesc> emission_image;  // radiance = emission x this image at pbrt's (u, v)
   Vec3f motion{0, 0, 0};  // MotionBlur (see MeshDesc::motion)
+  std::optional<TransformMotionDesc> to_world_motion;  // to_world moves over the shutter (pbrt ActiveTransform)
   ShapeAlphaDesc alpha;
   MediumInterfaceDesc media;
 };
@@ -382,6 +383,10 @@ inline QuadricDesc quadric_of_sphere(const SphereDesc& s) {
   q.material = s.material;
   q.emission = s.emission;
   q.motion = s.motion;
+  if (s.to_world_motion) {
+    q.to_world_motion = s.to_world_motion;
+    q.to_world_motion->end = s.to_world_motion->end * Transform::translate(s.center);
+  }
   q.alpha = s.alpha;
   q.media = s.media;
   return q;

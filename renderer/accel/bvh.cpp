@@ -453,11 +453,16 @@ struct Bvh::Impl {
   template <bool kAny>
   [[gnu::noinline]] bool quadric_prim(const PrimRef ref, Vec3f origin, const TravRay& r, float& tmax,
                                       Closest& best) const {
-    const uint32_t qi = ref_index(ref);
     Vec3f o = origin, d = r.d;
-    to_object_space(quadric_to_object[qi], o, d);
+    to_object_space(quadric_to_object[ref_index(ref)], o, d);
+    return object_space_quadric<kAny>(ref, o, d, r, tmax, best);
+  }
+
+  // The quadric of `ref` against the ray (o, d) in its object space.
+  template <bool kAny>
+  bool object_space_quadric(const PrimRef ref, Vec3f o, Vec3f d, const TravRay& r, float& tmax, Closest& best) const {
     const bool alpha = g.shapes[ref.shape].alpha;
-    const auto h = intersect_quadric(g.quadrics[qi].quadric, o, d, r.tmin, tmax, [&](const QuadricHit& c) {
+    const auto h = intersect_quadric(g.quadrics[ref_index(ref)].quadric, o, d, r.tmin, tmax, [&](const QuadricHit& c) {
       return !alpha || alpha_keeps(g, *r.world, ref.shape, 0, c.uv, c.root);
     });
     if (!h) return false;
@@ -467,8 +472,8 @@ struct Bvh::Impl {
   }
 
   // A sphere, a quadric, an instance (whose prototype tree is traversed with the ray in object space) or a moving
-  // mesh (its tree traversed with the ray moved back by the mesh's offset at the ray's time). An animated sphere or
-  // instance takes the ray into its space at the ray's time.
+  // mesh (its tree traversed with the ray moved back by the mesh's offset at the ray's time). An animated sphere,
+  // quadric or instance takes the ray into its space at the ray's time.
   template <bool kAny, bool kAlpha>
   bool other_prim(const PrimRef ref, const TravRay& r, float& tmax, Closest& best) const {
     const Shape& shape = g.shapes[ref.shape];
@@ -512,6 +517,7 @@ struct Bvh::Impl {
       if constexpr (!kAny) best = {*t, ref.shape, 0, 0.0f, 0.0f};
       return true;
     }
+    if (ref_kind(ref) == kKindQuadric) return object_space_quadric<kAny>(ref, o, d, r, tmax, best);
     const TravRay obj(Ray{o, d, r.tmin, tmax, r.time}, r.world);
     return traverse<kAny, kAlpha>(prototypes[g.instances[ref_index(ref)].prototype], obj, tmax, best, ref.shape);
   }
@@ -548,7 +554,7 @@ bool Bvh::intersect(const Ray& ray, Hit& hit) const {
     hit.v = best.b2;
     Ray back = ray;
     if (s.translates()) back.o -= s.offset_at(ray.time);
-    hit.ng = quadric_world_normal(g.quadrics[s.index], back, best.t);
+    hit.ng = quadric_world_normal(quadric_at(g, s, ray.time), back, best.t);
   } else {
     hit.prim = best.prim;
     hit.u = best.b1;

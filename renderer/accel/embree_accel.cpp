@@ -214,20 +214,27 @@ struct QuadricData {
   Transform to_object;
   Vec3f motion{0.0f};
   bool alpha = false;
+  const AnimatedTransform* animated = nullptr;
+  unsigned steps = 2;
 };
 
 void quadric_bounds_cb(const RTCBoundsFunctionArguments* args) {
   const auto* q = static_cast<const QuadricData*>(args->geometryUserPtr);
+  if (q->animated) {
+    const Shape& s = q->geometry->shapes[q->shape];
+    *args->bounds_o = animated_step_bounds(*q->animated, shape_object_bounds(*q->geometry, s), args->timeStep, q->steps);
+    return;
+  }
   store_bounds(args, quadric_world_bounds(*q->quadric), q->motion);
 }
 
 // Lane i of a ray packet against the quadric (object space), its alpha test included.
 std::optional<QuadricHit> quadric_lane(const QuadricData& q, const RTCIntersectContext* context, RTCRayN* ray,
                                        unsigned n, unsigned i) {
-  Vec3f o = Vec3f(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i)) -
-            q.motion * RTCRayN_time(ray, n, i);
+  const float time = RTCRayN_time(ray, n, i);
+  Vec3f o = Vec3f(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i)) - q.motion * time;
   Vec3f d(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
-  to_object_space(q.to_object, o, d);
+  to_object_space(q.animated ? q.animated->at(time).inverse() : q.to_object, o, d);
   return intersect_quadric(q.quadric->quadric, o, d, RTCRayN_tnear(ray, n, i), RTCRayN_tfar(ray, n, i),
                            [&](const QuadricHit& h) {
                              return !q.alpha || alpha_keeps(*q.geometry, world_ray_of(context), q.shape, 0, h.uv,
@@ -420,8 +427,10 @@ struct EmbreeAccel::Impl {
                              sphere_occluded_cb);
       } else if (s.kind == ShapeKind::Quadric) {
         const QuadricShape& q = geometry.quadrics[s.index];
-        quadric_data.push_back({&geometry, id, &q, q.to_world.inverse(), s.motion, s.alpha});
-        geom = user_geometry(&quadric_data.back(), s.moving() ? 2 : 0, quadric_bounds_cb, quadric_intersect_cb,
+        const AnimatedTransform* animated = s.animated >= 0 ? &geometry.motions[size_t(s.animated)] : nullptr;
+        const unsigned steps = animated ? animated_time_steps(*animated) : 2;
+        quadric_data.push_back({&geometry, id, &q, q.to_world.inverse(), s.motion, s.alpha, animated, steps});
+        geom = user_geometry(&quadric_data.back(), s.moving() ? steps : 0, quadric_bounds_cb, quadric_intersect_cb,
                              quadric_occluded_cb);
       } else {
         const MeshInstance& inst = geometry.instances[s.index];
@@ -516,7 +525,7 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
     hit.v = rh.hit.v;
     Ray back = ray;  // a moving quadric is hit where it is at the ray's time
     if (s.translates()) back.o -= s.offset_at(ray.time);
-    hit.ng = quadric_world_normal(g.quadrics[s.index], back, hit.t);
+    hit.ng = quadric_world_normal(quadric_at(g, s, ray.time), back, hit.t);
   } else {
     hit.prim = rh.hit.primID;
     hit.u = rh.hit.u;

@@ -152,7 +152,7 @@ ExactHit exact_hit(const WorldGeometry& g, const Ray& ray, uint32_t shape, uint3
   const Transform animated = s.animated >= 0 ? g.motions[size_t(s.animated)].at(ray.time) : Transform();
   if (s.kind == ShapeKind::Sphere)
     return exact_sphere(ray, g.spheres[s.index], s.animated >= 0 ? animated : g.spheres[s.index].to_world, offset);
-  if (s.kind == ShapeKind::Quadric) return exact_quadric(ray, g.quadrics[s.index], offset);
+  if (s.kind == ShapeKind::Quadric) return exact_quadric(ray, quadric_at(g, s, ray.time), offset);
   if (s.kind == ShapeKind::Mesh) {
     const TriangleMesh& m = g.meshes[s.index];
     return exact_triangle(ray, to_d(m.vertex(prim, 0)) + offset, to_d(m.vertex(prim, 1)) + offset,

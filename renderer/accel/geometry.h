@@ -40,8 +40,8 @@ enum class ShapeKind : uint8_t { Mesh, Sphere, Instance, Quadric };
 // for moving shapes only.
 //   * translation: a shape with a non-zero motion is translated by time * motion; its mesh, sphere or instance data
 //     describe it at time 0 (CENG795 MotionBlur);
-//   * animated: a sphere's or instance's to_world is WorldGeometry::motions[animated] at the ray's time (pbrt's
-//     interpolated transforms); its to_world holds the start transform.
+//   * animated: a sphere's, quadric's or instance's to_world is WorldGeometry::motions[animated] at the ray's time
+//     (pbrt's interpolated transforms); its to_world holds the start transform.
 struct Shape {
   ShapeKind kind = ShapeKind::Mesh;
   uint32_t index = 0;  // into meshes (Mesh), spheres (Sphere), instances (Instance) or quadrics (Quadric)
@@ -81,8 +81,11 @@ struct WorldGeometry {
   size_t triangle_count() const;  // counting instanced triangles once per instance
 };
 
-// The object-to-world transform of a Sphere or Instance shape at `time`: its animated transform there, or its own
-// to_world (moved by the translation motion's offset).
+// The object-to-world transform of a Sphere, Quadric or Instance shape at `time`: its animated transform there, or
+// its own to_world (moved by the translation motion's offset).
 Transform shape_to_world(const WorldGeometry& g, const Shape& s, float time);
+// A Quadric shape placed by its animated transform at `time` (a copy); unanimated, as it is. A translation motion is
+// left to the callers, which move the ray back by Shape::offset_at instead.
+QuadricShape quadric_at(const WorldGeometry& g, const Shape& s, float time);
 
 }  // namespace kiln

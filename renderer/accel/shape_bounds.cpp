@@ -22,13 +22,17 @@ Bounds3f mesh_bounds(const TriangleMesh& m) {
 
 // The transformed corners are rounded to float while hits are computed through the transform in double: a few ulps
 // of padding keep every surface point inside the box.
-Bounds3f quadric_world_bounds(const QuadricShape& q) {
-  Bounds3f b = q.to_world.bounds(q.quadric.bounds());
+namespace {
+// A quadric's box widened by a hair, so that hits found in its object space at its very edge stay inside.
+Bounds3f padded(Bounds3f b) {
   const float pad = 0x1p-20f * std::max(max_component(abs(b.lo)), max_component(abs(b.hi)));
   b.lo -= Vec3f(pad);
   b.hi += Vec3f(pad);
   return b;
 }
+}  // namespace
+
+Bounds3f quadric_world_bounds(const QuadricShape& q) { return padded(q.to_world.bounds(q.quadric.bounds())); }
 
 Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst) {
   return inst.to_world.bounds(mesh_bounds(g.prototypes[inst.prototype]));
@@ -62,6 +66,7 @@ Bounds3f shape_object_bounds(const WorldGeometry& g, const Shape& s) {
     return {sp.center - Vec3f(sp.radius), sp.center + Vec3f(sp.radius)};
   }
   if (s.kind == ShapeKind::Instance) return mesh_bounds(g.prototypes[g.instances[s.index].prototype]);
+  if (s.kind == ShapeKind::Quadric) return padded(g.quadrics[s.index].quadric.bounds());
   return mesh_bounds(g.meshes[s.index]);
 }
 
@@ -75,8 +80,15 @@ Transform shape_to_world(const WorldGeometry& g, const Shape& s, float time) {
   if (s.animated >= 0) return g.motions[size_t(s.animated)].at(time);
   const Transform& xf = s.kind == ShapeKind::Sphere     ? g.spheres[s.index].to_world
                         : s.kind == ShapeKind::Instance ? g.instances[s.index].to_world
+                        : s.kind == ShapeKind::Quadric  ? g.quadrics[s.index].to_world
                                                         : Transform();
   return s.translates() ? Transform::translate(s.offset_at(time)) * xf : xf;
+}
+
+QuadricShape quadric_at(const WorldGeometry& g, const Shape& s, float time) {
+  QuadricShape q = g.quadrics[s.index];
+  if (s.animated >= 0) q.to_world = g.motions[size_t(s.animated)].at(time);
+  return q;
 }
 
 Bounds3f geometry_bounds(const WorldGeometry& g) {

@@ -18,7 +18,7 @@ Bounds3f instance_world_bounds(const WorldGeometry& g, const MeshInstance& inst)
 // its object-space box through AnimatedTransform::motion_bounds.
 Bounds3f shape_static_bounds(const WorldGeometry& g, const Shape& s);
 Bounds3f shape_world_bounds(const WorldGeometry& g, const Shape& s);
-// In the shape's own space: the sphere's cube, the instance prototype's or the (world-space) mesh's box.
+// In the shape's own space: the sphere's cube, the quadric's or instance prototype's or the (world-space) mesh's box.
 Bounds3f shape_object_bounds(const WorldGeometry& g, const Shape& s);
 Bounds3f swept_bounds(const Bounds3f& at_time0, Vec3f motion);
 

@@ -86,6 +86,7 @@ SurfacePoint surface_point(const WorldGeometry& g, const Ray& ray, const Hit& hi
   const ShapeKind kind = kMeshesOnly ? ShapeKind::Mesh : s.kind;
   if (kMeshesOnly || !s.moving()) return static_surface_point(g, s, kind, ray, hit);
   if (s.animated >= 0) {  // where the animated transform has the shape at the ray's time
+    if (kind == ShapeKind::Quadric) return on_quadric(quadric_at(g, s, ray.time), ray, hit.t);
     const Transform to_world = g.motions[size_t(s.animated)].at(ray.time);
     return kind == ShapeKind::Sphere ? on_sphere(g.spheres[s.index], to_world, ray, hit.t)
                                      : on_instance(g, g.instances[s.index], to_world, hit);

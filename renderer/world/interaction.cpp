@@ -122,7 +122,7 @@ void texture_frame(const World& world, const ShapeData& sd, const Ray& ray, cons
     case ShapeKind::Quadric: {
       Ray back = ray;  // a moving quadric, where the ray found it
       if (shape.translates()) back.o -= shape.offset_at(ray.time);
-      quadric_texture_frame(world.geometry.quadrics[shape.index], back, hit, si);
+      quadric_texture_frame(quadric_at(world.geometry, shape, time), back, hit, si);
       break;
     }
   }

@@ -87,7 +87,7 @@ Vec3f shape_motion(World& w, const std::string& name, Vec3f motion, int light) {
   return motion;
 }
 
-// The animated transform of a sphere or instance whose to_world moves (pbrt ActiveTransform), as an index into
+// The animated transform of a sphere, quadric or instance whose to_world moves (pbrt ActiveTransform), as an index into
 // WorldGeometry::motions; -1 when it does not move. Emitters stay at their start, as with shape_motion.
 int32_t shape_animation(World& w, const std::string& name, const Transform& start,
                         const std::optional<TransformMotionDesc>& motion, int light) {
@@ -371,8 +371,9 @@ class WorldBuilder {
         if (q.emission && !q.emission->is_black())
           sd.light = add_shape_light(quadric_light(q), w_.stats.quadric_lights, kFeatureQuadricLights);
         add_alpha(uint32_t(g.shapes.size()), q.alpha, -1, q.name, sd.light >= 0);
-        g.shapes.push_back(
-            Shape{ShapeKind::Quadric, uint32_t(g.quadrics.size()), shape_motion(w_, q.name, q.motion, sd.light)});
+        g.shapes.push_back(Shape{ShapeKind::Quadric, uint32_t(g.quadrics.size()),
+                                 shape_motion(w_, q.name, q.motion, sd.light),
+                                 shape_animation(w_, q.name, q.to_world, q.to_world_motion, sd.light)});
         g.quadrics.push_back(QuadricShape{q.quadric, q.to_world, q.flip});
         w_.shape_data.push_back(sd);
         w_.features |= kFeatureQuadrics;

@@ -779,10 +779,10 @@ class PbrtParser {
       return;
     }
     if (s.quadric) {
-      if (motion) unmoved_quadric(line, ps.context());
       QuadricDesc& q = *s.quadric;
       q.material = material;
       q.to_world = to_world;
+      q.to_world_motion = motion;
       q.flip = flipped;
       q.media = gs_.media;  // the quadric's normal is pbrt's (flip included), so its sides are pbrt's
       if (light) {
@@ -794,7 +794,6 @@ class PbrtParser {
       return;
     }
     if (light && light->image) {  // a whole-turn quadric sphere: pbrt's (u, v) for the image, both sides
-      if (motion) unmoved_quadric(line, ps.context());
       QuadricDesc q = quadric_of_sphere(*s.sphere);
       q.material = material;
       q.to_world = to_world * Transform::translate(s.sphere->center);
@@ -809,10 +808,6 @@ class PbrtParser {
     SphereDesc sp = *s.sphere;
     sp.material = material;
     sp.to_world = to_world;
-    if (motion && sp.alpha.cuts()) {  // built as a quadric sphere (pbrt's (u, v) for the alpha texture)
-      unmoved_quadric(line, ps.context());
-      motion.reset();
-    }
     sp.to_world_motion = motion;
     if (!to_world.invertible()) fail(line, ps.context(), "the transform is singular: a sphere needs its inverse");
     // Kiln's sphere normal always points out of the sphere; pbrt's "outside" is where its normal points.
@@ -850,15 +845,6 @@ class PbrtParser {
       return std::nullopt;
     }
     return motion_of(gs_.ctm[0], gs_.ctm[1], line, context);
-  }
-
-  // Disks, cylinders, partial spheres and spheres with an alpha cut-out are quadric user geometry, which moves by
-  // translation (MotionBlur) only: under an animated transform it stays at its start.
-  void unmoved_quadric(int line, const std::string& context) {
-    warn(line, context,
-         "the transform moves over the shutter, but Kiln does not move disks, cylinders, partial spheres or spheres "
-         "with \"alpha\" by an animated transform; it is rendered at its start transform");
-    diag_.unsupported("moving quadrics (pbrt ActiveTransform on a disk, cylinder, partial or alpha-cut sphere)");
   }
 
   // A moving mesh is rendered as an instance of its object-space self whose transform moves.
@@ -927,17 +913,14 @@ class PbrtParser {
       inst.media = base.media;
       scene_.instances.push_back(inst);
     }
-    const bool cut_sphere = std::any_of(it->second.spheres.begin(), it->second.spheres.end(),
-                                        [](const SphereDesc& s) { return s.alpha.cuts(); });
-    if ((cut_sphere || !it->second.quadrics.empty()) && !same(gs_.ctm[0], gs_.ctm[1]))
-      unmoved_quadric(line, "ObjectInstance");
     for (SphereDesc s : it->second.spheres) {
-      if (!s.alpha.cuts()) s.to_world_motion = moved(s.to_world);
+      s.to_world_motion = moved(s.to_world);
       s.to_world = placement * s.to_world;
       s.name = label + " " + s.name;
       scene_.spheres.push_back(s);
     }
     for (QuadricDesc q : it->second.quadrics) {
+      q.to_world_motion = moved(q.to_world);
       q.to_world = placement * q.to_world;
       q.name = label + " " + q.name;
       scene_.quadrics.push_back(q);
