@@ -364,6 +364,33 @@ TEST(Cli, PbrtSceneRendersAndEveryCommandReadsIt) {
   EXPECT_NE(prof.output.find("\"triangles\": 128"), std::string::npos) << prof.output;
 }
 
+// kiln info counts the mixes whose amount is a texture (each hit evaluates it and chooses there), and says nothing
+// of them for a scene whose mixes have constant amounts.
+TEST(Cli, InfoCountsTheMixesChosenByATexturedAmount) {
+  const std::string dir = tmp_dir("cli_info_mix");
+  const auto scene = [](const std::string& amount) {
+    return std::string(R"(Camera "perspective"
+Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+Texture "ramp" "float" "checkerboard" "float uscale" 4
+MakeNamedMaterial "a" "string type" "diffuse"
+MakeNamedMaterial "b" "string type" "conductor"
+MakeNamedMaterial "mixed" "string type" "mix" "string materials" [ "a" "b" ] )") +
+           amount + R"(
+NamedMaterial "mixed"
+Shape "sphere" "float radius" 1
+)";
+  };
+  const std::string line = "mixes chosen per hit by a textured amount: ";
+  const RunResult textured = run_kiln("info " + write_file(dir, "textured.pbrt", scene("\"texture amount\" \"ramp\"")));
+  EXPECT_EQ(textured.exit_code, 0) << textured.output;
+  EXPECT_NE(textured.output.find(line + "1\n"), std::string::npos) << textured.output;
+  const RunResult constant = run_kiln("info " + write_file(dir, "constant.pbrt", scene("\"float amount\" 0.3")));
+  EXPECT_EQ(constant.exit_code, 0) << constant.output;
+  EXPECT_EQ(constant.output.find(line), std::string::npos) << constant.output;
+}
+
 // kiln info --json: every pbrt directive's outcome with its file and line (issue 27 item 6), counted per kind.
 TEST(Cli, InfoJsonListsWhatEachPbrtDirectiveBecame) {
   const std::string file = std::string(KILN_SOURCE_DIR) + "/tests/data/pbrt/unsupported.pbrt";
