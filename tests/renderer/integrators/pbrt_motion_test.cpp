@@ -71,6 +71,23 @@ void expect_hits_match(const World& w, const Camera& cam, Covered&& covered, con
   EXPECT_GT(hits, checked / 20) << what << ": the shape is in view";
 }
 
+// Runs check(world, name) on the scene's world built with each accelerator, its moving shapes moving.
+template <typename Check>
+void with_each_accelerator(const SceneDesc& s, Check&& check) {
+  for (AccelKind accel : {AccelKind::Embree, AccelKind::Bvh}) {
+    const auto w = world_for(s, accel);
+    ASSERT_TRUE(w->features & kFeatureMotionBlur);
+    check(*w, accel == AccelKind::Embree ? "embree" : "bvh");
+  }
+}
+
+// expect_hits_match for camera 0 of the scene with each accelerator.
+template <typename Covered>
+void expect_coverage(const SceneDesc& s, Covered&& covered) {
+  const Camera cam(s.cameras.at(0));
+  with_each_accelerator(s, [&](const World& w, const char* name) { expect_hits_match(w, cam, covered, name); });
+}
+
 // A bar 4 long and 0.2 wide, turned from 0 to 90 degrees about z over the shutter (ActiveTransform EndTime): at time
 // t it lies along angle pi t / 2, and covers (x, y) when the point's distance from its axis is at most 0.1.
 TEST(PbrtMotion, TurningBarCoversWhatTheSlerpSays) {
@@ -81,16 +98,10 @@ ActiveTransform All
 Shape "trianglemesh" "point3 P" [ -2 -0.1 0  2 -0.1 0  2 0.1 0  -2 0.1 0 ] "integer indices" [ 0 1 2 0 2 3 ]
 AttributeEnd
 )"));
-  const Camera cam(s.cameras.at(0));
-  const auto covered = [](double x, double y, double t) {
+  expect_coverage(s, [](double x, double y, double t) {
     const double a = 0.5 * 3.14159265358979323846 * t;
     return 0.1 - std::abs(-x * std::sin(a) + y * std::cos(a));
-  };
-  for (AccelKind accel : {AccelKind::Embree, AccelKind::Bvh}) {
-    const auto w = world_for(s, accel);
-    ASSERT_TRUE(w->features & kFeatureMotionBlur);
-    expect_hits_match(*w, cam, covered, accel == AccelKind::Embree ? "embree" : "bvh");
-  }
+  });
 }
 
 // Quadrics move by their animated transform as spheres do. A half annulus (radii 0.2 to 0.8, phi in [0, pi]: object
@@ -105,16 +116,10 @@ Shape "disk" "float radius" 0.8 "float innerradius" 0.2 "float phimax" 180
 AttributeEnd
 )"));
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
-  const Camera cam(s.cameras.at(0));
-  const auto covered = [](double x, double y, double t) {
+  expect_coverage(s, [](double x, double y, double t) {
     const double a = 0.5 * 3.14159265358979323846 * t, r = std::hypot(x, y);
     return std::min({0.8 - r, r - 0.2, -x * std::sin(a) + y * std::cos(a)});
-  };
-  for (AccelKind accel : {AccelKind::Embree, AccelKind::Bvh}) {
-    const auto w = world_for(s, accel);
-    ASSERT_TRUE(w->features & kFeatureMotionBlur);
-    expect_hits_match(*w, cam, covered, accel == AccelKind::Embree ? "embree" : "bvh");
-  }
+  });
 }
 
 // A cylinder of radius 0.2 from x = -0.6 to 0.6 (its axis turned onto x), moving from y = -0.3 to y = 0.2: at time t
@@ -134,21 +139,20 @@ AttributeEnd
   const auto covered = [&](double x, double y, double t) {
     return std::min(0.6 - std::abs(x), 0.2 - std::abs(y - axis_y(t)));
   };
-  for (AccelKind accel : {AccelKind::Embree, AccelKind::Bvh}) {
-    const auto w = world_for(s, accel);
-    expect_hits_match(*w, cam, covered, accel == AccelKind::Embree ? "embree" : "bvh");
-    // The shading point and normal are the cylinder's where it is at the ray's time.
+  expect_coverage(s, covered);
+  // The shading point and normal are the cylinder's where it is at the ray's time.
+  with_each_accelerator(s, [&](const World& w, const char* name) {
     for (int k = 0; k < kTimes; ++k) {
       const float t = stratified_time(k);
       const Ray r = cam.sample(24.5f, float(kRes) * (1.0f - float(axis_y(t) + 1.0) / 2.0f), {0.5f, 0.5f}, t).ray;
       Hit h;
-      ASSERT_TRUE(w->accel->intersect(r, h)) << "time " << t;
-      const SurfacePoint sp = surface_point<false>(w->geometry, r, h);
+      ASSERT_TRUE(w.accel->intersect(r, h)) << name << ", time " << t;
+      const SurfacePoint sp = surface_point<false>(w.geometry, r, h);
       const Vec3f radial(0.0f, sp.p.y - float(axis_y(t)), sp.p.z);
-      EXPECT_NEAR(length(radial), 0.2f, 1e-4f) << "time " << t;
-      EXPECT_GT(dot(sp.ng, normalize(radial)), 0.9999f) << "time " << t;
+      EXPECT_NEAR(length(radial), 0.2f, 1e-4f) << name << ", time " << t;
+      EXPECT_GT(dot(sp.ng, normalize(radial)), 0.9999f) << name << ", time " << t;
     }
-  }
+  });
 }
 
 // A sphere of radius 0.5 whose alpha texture cuts away phi in [pi, 2 pi) (a checkerboard of two cells along u: pbrt's
@@ -164,16 +168,11 @@ Shape "sphere" "float radius" 0.5 "texture alpha" "half"
 AttributeEnd
 )"));
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
-  const Camera cam(s.cameras.at(0));
-  const auto covered = [](double x, double y, double t) {
+  EXPECT_EQ(world_for(s, AccelKind::Embree)->stats.quadrics, 1u) << "the cut sphere is a quadric";
+  expect_coverage(s, [](double x, double y, double t) {
     const double a = 0.5 * 3.14159265358979323846 * t;
     return std::min(0.5 - std::hypot(x, y), -x * std::sin(a) + y * std::cos(a));
-  };
-  for (AccelKind accel : {AccelKind::Embree, AccelKind::Bvh}) {
-    const auto w = world_for(s, accel);
-    ASSERT_EQ(w->stats.quadrics, 1u) << "the cut sphere is a quadric";
-    expect_hits_match(*w, cam, covered, accel == AccelKind::Embree ? "embree" : "bvh");
-  }
+  });
 }
 
 // A sphere of radius 0.3 at (-0.5, 0) moving to (0.5, 0.2) while scaled by 2: at time t its centre and radius are
@@ -188,15 +187,10 @@ ActiveTransform All
 Shape "sphere" "float radius" 0.3
 AttributeEnd
 )"));
-  const Camera cam(s.cameras.at(0));
-  const auto covered = [](double x, double y, double t) {
+  expect_coverage(s, [](double x, double y, double t) {
     const double cx = -0.5 + t, cy = 0.2 * t, r = 0.3 * (1.0 + t);
     return r - std::hypot(x - cx, y - cy);
-  };
-  for (AccelKind accel : {AccelKind::Embree, AccelKind::Bvh}) {
-    const auto w = world_for(s, accel);
-    expect_hits_match(*w, cam, covered, accel == AccelKind::Embree ? "embree" : "bvh");
-  }
+  });
 }
 
 // killeroo-moving.pbrt as in the pbrt-v4 collection (camera, light, floor and wall, the two killeroos and their
