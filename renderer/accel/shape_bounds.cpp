@@ -20,10 +20,9 @@ Bounds3f mesh_bounds(const TriangleMesh& m) {
   return b;
 }
 
-// The transformed corners are rounded to float while hits are computed through the transform in double: a few ulps
-// of padding keep every surface point inside the box.
 namespace {
-// A quadric's box widened by a hair, so that hits found in its object space at its very edge stay inside.
+// A quadric's box, widened: the transformed corners are rounded to float while hits are computed through the
+// transform in double, and a few ulps of padding keep every surface point inside the box.
 Bounds3f padded(Bounds3f b) {
   const float pad = 0x1p-20f * std::max(max_component(abs(b.lo)), max_component(abs(b.hi)));
   b.lo -= Vec3f(pad);

@@ -751,7 +751,7 @@ class PbrtParser {
       warn(line, ps.context(), "area lights inside ObjectBegin are not supported (pbrt-v4 ignores them too)");
       light.reset();
     }
-    std::optional<TransformMotionDesc> motion = shape_motion(line, ps.context(), light.has_value());
+    const std::optional<TransformMotionDesc> motion = shape_motion(line, ps.context(), light.has_value());
     const int material = gs_.material >= 0 ? gs_.material : builder_.default_material(file());
     if (s.mesh) {
       MeshDesc& m = *s.mesh;
