@@ -25,7 +25,7 @@ inline float alpha_hash(const Ray& world_ray, uint32_t shape, uint32_t prim, uin
 // Whether a candidate hit on a shape with Shape::alpha set is kept (hit_uv: see AlphaTest).
 inline bool alpha_keeps(const WorldGeometry& g, const Ray& world_ray, uint32_t shape, uint32_t prim, Vec2f hit_uv,
                         uint32_t root) {
-  const float a = g.alpha.opacity(g.alpha.world, shape, prim, hit_uv);
+  const float a = g.alpha.opacity(g.alpha.world, shape, prim, hit_uv, world_ray.time);
   if (a >= 1.0f) return true;
   if (!(a > 0.0f)) return false;
   return alpha_hash(world_ray, shape, prim, root) < a;

@@ -53,7 +53,7 @@ constexpr float kAlphaNoise = 1e-4f;
 ExactHit exact_hit_with_alpha(const WorldGeometry& g, const Ray& r, uint32_t shape, uint32_t prim) {
   ExactHit e = exact_hit(g, r, shape, prim);
   if (!e.hit || !g.shapes[shape].alpha) return e;
-  const float a = g.alpha.opacity(g.alpha.world, shape, prim, e.where);
+  const float a = g.alpha.opacity(g.alpha.world, shape, prim, e.where, r.time);
   const float u = alpha_hash(r, shape, prim, e.root);
   if (a > 0.0f && a < 1.0f && std::abs(u - a) <= kAlphaNoise) e.near_edge = true;
   e.hit = alpha_keeps(g, r, shape, prim, e.where, e.root);

@@ -59,11 +59,12 @@ struct MeshInstance {
 };
 
 // Alpha cut-outs (pbrt's "alpha"): the accelerators ask the world for the opacity of a shape at a candidate hit,
-// given by its primitive and hit coordinates (a triangle's barycentrics b1, b2; a quadric's surface (u, v)), and keep
-// the hit by pbrt-v4's stochastic rule (renderer/accel/alpha.h). The world evaluates a constant or a texture there;
-// the accelerators know nothing of textures.
+// given by its primitive and hit coordinates (a triangle's barycentrics b1, b2; a quadric's surface (u, v)) and the
+// ray's time (a moving shape is where it is then), and keep the hit by pbrt-v4's stochastic rule
+// (renderer/accel/alpha.h). The world evaluates a constant or a texture there; the accelerators know nothing of
+// textures.
 struct AlphaTest {
-  float (*opacity)(const void* world, uint32_t shape, uint32_t prim, Vec2f hit_uv) = nullptr;
+  float (*opacity)(const void* world, uint32_t shape, uint32_t prim, Vec2f hit_uv, float time) = nullptr;
   const void* world = nullptr;
 };
 

@@ -3,7 +3,7 @@
 // stochastic rule (renderer/accel/alpha.h); camera, bounce and shadow rays all go through it there.
 //
 // A texture sees the hit as a material's textures do (renderer/texture/texture_graph.h): the world-space point and
-// normal, and (u, v) from a triangle's barycentrics and its vertices' uv (pbrt's (0,0), (1,0), (1,1) when the mesh has
+// normal (of a moving shape, where it is at the ray's time, as pbrt-v4 evaluates alpha), and (u, v) from a triangle's barycentrics and its vertices' uv (pbrt's (0,0), (1,0), (1,1) when the mesh has
 // none) or a quadric's own (u, v); every class and mapping, at its finest detail.
 #pragma once
 #include <cstdint>
@@ -28,10 +28,10 @@ class AlphaCutouts {
   size_t size() const { return alpha_.size(); }
   bool has(uint32_t shape) const { return shape < index_of_shape_.size() && index_of_shape_[shape] >= 0; }
   // Opacity in [0, 1] of a shape at a candidate hit (AlphaTest's signature; 1 for shapes without a cut-out).
-  static float opacity(const void* world, uint32_t shape, uint32_t prim, Vec2f hit_uv);
+  static float opacity(const void* world, uint32_t shape, uint32_t prim, Vec2f hit_uv, float time);
 
  private:
-  float opacity_at(const World& w, uint32_t shape, uint32_t prim, Vec2f hit_uv) const;
+  float opacity_at(const World& w, uint32_t shape, uint32_t prim, Vec2f hit_uv, float time) const;
   std::vector<int> index_of_shape_;  // shape -> index into alpha_, -1 without one
   std::vector<ShapeAlpha> alpha_;
 };

@@ -21,7 +21,7 @@ using namespace kiln::test;
 // over the hit coordinates, opaque on even cells.
 struct TestOpacity {
   std::vector<float> per_shape;
-  static float opacity(const void* self, uint32_t shape, uint32_t, Vec2f hit) {
+  static float opacity(const void* self, uint32_t shape, uint32_t, Vec2f hit, float) {
     const float a = static_cast<const TestOpacity*>(self)->per_shape[shape];
     if (a >= 0.0f) return a;
     return (int(std::floor(hit.x * 4.0f)) + int(std::floor(hit.y * 4.0f))) % 2 == 0 ? 1.0f : 0.0f;
@@ -102,7 +102,7 @@ TEST(Alpha, ACutOutPatternPassesRaysThroughItsOpenCellsOnly) {
         continue;
       }
       // Every kept hit lies on an opaque cell.
-      EXPECT_EQ(TestOpacity::opacity(&o, h.shape, h.prim, {h.u, h.v}), 1.0f) << h.shape;
+      EXPECT_EQ(TestOpacity::opacity(&o, h.shape, h.prim, {h.u, h.v}, 0.0f), 1.0f) << h.shape;
     }
     EXPECT_GT(through, 2000) << "rays pass the open cells of both cut-outs";
   }

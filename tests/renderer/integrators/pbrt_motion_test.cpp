@@ -3,7 +3,8 @@
 //   * a bar turning a quarter turn (pbrt's slerp: constant angular speed) seen by an orthographic camera looking
 //     straight down covers a pixel exactly when the closed form says it does, ray by ray at stratified times;
 //   * a sphere that moves and grows (translation and stretch interpolated linearly) likewise, and the quadrics: a
-//     turning half annulus, a sliding cylinder, a turning sphere half cut away by its alpha texture;
+//     turning half annulus, a sliding cylinder, a turning sphere half cut away by its alpha texture, and shapes
+//     turning through a 3-D alpha texture that stays put;
 //   * killeroo-moving (the pbrt-v4 collection's scene, at a lower resolution): at every instant the moving scene
 //     is hit where a static scene with the killeroos placed at that instant is hit, and its coverage averaged over
 //     the shutter is the average of those static frames;
@@ -172,6 +173,38 @@ AttributeEnd
   expect_coverage(s, [](double x, double y, double t) {
     const double a = 0.5 * 3.14159265358979323846 * t;
     return std::min(0.5 - std::hypot(x, y), -x * std::sin(a) + y * std::cos(a));
+  });
+}
+
+// pbrt-v4 evaluates alpha where the hit is at the ray's time, so a 3-D alpha texture stays put in space while a
+// shape turns through it. The checkerboard here (cells of 10, offset so that |x|, |z| < 5 share one cell) keeps world
+// y >= 0 and cuts y < 0: a turning sphere of radius 0.5 and the turning bar both show only their y >= 0 parts, at
+// every instant.
+TEST(PbrtMotion, TurningShapesAreCutWhereTheSpaceFixedAlphaTextureSays) {
+  const std::string texture = R"(AttributeBegin
+Scale 10 10 10
+Translate -0.5 0 -0.5
+Texture "upper" "float" "checkerboard" "integer dimension" 3
+AttributeEnd
+AttributeBegin
+ActiveTransform EndTime
+Rotate 90 0 0 1
+ActiveTransform All
+)";
+  const SceneDesc sphere = load_scene(write_scene("alpha3d_sphere", std::string(kTopView) + texture + R"(
+Shape "sphere" "float radius" 0.5 "texture alpha" "upper"
+AttributeEnd
+)"));
+  EXPECT_TRUE(sphere.warnings.empty()) << sphere.warnings.front();
+  expect_coverage(sphere, [](double x, double y, double) { return std::min(0.5 - std::hypot(x, y), y); });
+  const SceneDesc bar = load_scene(write_scene("alpha3d_bar", std::string(kTopView) + texture + R"(
+Shape "trianglemesh" "point3 P" [ -2 -0.1 0  2 -0.1 0  2 0.1 0  -2 0.1 0 ] "integer indices" [ 0 1 2 0 2 3 ]
+  "texture alpha" "upper"
+AttributeEnd
+)"));
+  expect_coverage(bar, [](double x, double y, double t) {
+    const double a = 0.5 * 3.14159265358979323846 * t;
+    return std::min(0.1 - std::abs(-x * std::sin(a) + y * std::cos(a)), y);
   });
 }
 
