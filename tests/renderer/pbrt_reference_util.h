@@ -2,6 +2,8 @@
 // and compared with pbrt-v4's render by 16-px block luminance (renderer/analysis/image_compare.h): the side-by-side
 // check of PbrtReference and PbrtFeatureScenes.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <iostream>
 #include <string>
 
@@ -9,6 +11,7 @@
 #include "renderer/film/pixel_filter.h"
 #include "renderer/image_io/image_io.h"
 #include "renderer/render_util.h"
+#include "support/shared_data.h"
 
 namespace kiln::test {
 
@@ -42,6 +45,18 @@ inline BlockStats blocks_against_reference(const std::string& name, const Image&
   std::cout << name << " vs pbrt-v4, " << kReferenceBlock << "-px blocks: median " << st.median_rel << ", p95 "
             << st.p95_rel << ", mean ratio " << st.mean_ratio << " over " << st.blocks << " blocks\n";
   return st;
+}
+
+// A file of the pbrt feature scenes (../shared/scenes/pbrt/features/), e.g. "reference/materials.exr".
+inline std::string feature_scene(const std::string& rel) { return shared_dir() + "/scenes/pbrt/features/" + rel; }
+
+// The feature issues' limits for Kiln against pbrt-v4 over 16-px blocks: luminance median < 2%, p95 < 8%, mean ratio
+// within 2%, and no pixel that is not finite.
+inline void expect_within_feature_limits(const BlockStats& st, const std::string& what) {
+  EXPECT_EQ(st.left_out.image, 0u) << what << ": pixels that are not finite";
+  EXPECT_LT(st.median_rel, 0.02) << what;
+  EXPECT_LT(st.p95_rel, 0.08) << what;
+  EXPECT_NEAR(st.mean_ratio, 1.0, 0.02) << what;
 }
 
 // Renders camera 0 of `scene_path` at spp with `seed` and compares it with the EXR `reference_path`.

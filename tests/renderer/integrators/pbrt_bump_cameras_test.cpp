@@ -17,29 +17,21 @@ namespace kiln::test {
 namespace {
 
 constexpr uint32_t kSpp = 16;
-constexpr double kMedianLimit = 0.02;
-constexpr double kP95Limit = 0.08;
-constexpr double kMeanRatioLimit = 0.02;
 
 // Feature regions of the 480x360 frame, on the 16-px block grid.
 constexpr PixelRect kWall{48, 16, 432, 176};
 constexpr PixelRect kFloor{0, 192, 480, 336};
 
-std::string features(const std::string& rel) { return shared_dir() + "/scenes/pbrt/features/" + rel; }
-
 void expect_within_limits(const std::string& what, const Image& image, const Image& reference,
                           const PixelRect& crop = {}) {
-  const BlockStats st =
-      blocks_against_reference("bump-cameras " + what + ", " + std::to_string(kSpp) + " spp", image, reference, crop);
-  EXPECT_EQ(st.left_out.image, 0u) << what << ": pixels that are not finite";
-  EXPECT_LT(st.median_rel, kMedianLimit) << what;
-  EXPECT_LT(st.p95_rel, kP95Limit) << what;
-  EXPECT_NEAR(st.mean_ratio, 1.0, kMeanRatioLimit) << what;
+  expect_within_feature_limits(
+      blocks_against_reference("bump-cameras " + what + ", " + std::to_string(kSpp) + " spp", image, reference, crop),
+      what);
 }
 
 TEST(PbrtFeatureScenes, BumpCamerasMatchesPbrtV4) {
-  KILN_NEED_SHARED_PATH(features("bump-cameras.pbrt"));
-  const SceneDesc scene = load_scene(features("bump-cameras.pbrt"));
+  KILN_NEED_SHARED_PATH(feature_scene("bump-cameras.pbrt"));
+  const SceneDesc scene = load_scene(feature_scene("bump-cameras.pbrt"));
   // The comparison must measure bump and normal maps, not their absence.
   for (const std::string& u : scene.unsupported)
     EXPECT_TRUE(u.find("displacement") == std::string::npos && u.find("normal map") == std::string::npos &&
@@ -47,7 +39,7 @@ TEST(PbrtFeatureScenes, BumpCamerasMatchesPbrtV4) {
         << "not rendered: " << u;
   ASSERT_EQ(scene.cameras.at(0).projection, CameraProjection::Orthographic);
   const Image image = render_like_kiln(scene, *build_scene_world(scene), kSpp, 3);
-  const Image reference = read_exr(features("reference/bump-cameras.exr")).rgb;
+  const Image reference = read_exr(feature_scene("reference/bump-cameras.exr")).rgb;
   ASSERT_EQ(image.width(), reference.width());
   ASSERT_EQ(image.height(), reference.height());
   expect_within_limits("whole image", image, reference);

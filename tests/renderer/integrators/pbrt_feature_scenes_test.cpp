@@ -22,36 +22,26 @@
 namespace kiln::test {
 namespace {
 
-constexpr double kMedianLimit = 0.02;
-constexpr double kP95Limit = 0.08;
-constexpr double kMeanRatioLimit = 0.02;
-
-std::string features(const std::string& rel) { return shared_dir() + "/scenes/pbrt/features/" + rel; }
-
 BlockStats feature_scene_against_pbrt(const std::string& name, uint32_t spp, uint64_t seed) {
-  return render_against_reference(name, features(name + ".pbrt"), features("reference/" + name + ".exr"), spp, seed);
-}
-
-void expect_within_limits(const BlockStats& st) {
-  EXPECT_EQ(st.left_out.image, 0u) << "pixels that are not finite";
-  EXPECT_LT(st.median_rel, kMedianLimit);
-  EXPECT_LT(st.p95_rel, kP95Limit);
-  EXPECT_NEAR(st.mean_ratio, 1.0, kMeanRatioLimit);
+  return render_against_reference(name, feature_scene(name + ".pbrt"), feature_scene("reference/" + name + ".exr"),
+                                  spp, seed);
 }
 
 TEST(PbrtFeatureScenes, EnvEquiareaMatchesPbrtV4) {
-  KILN_NEED_SHARED_PATH(features("env-equiarea.pbrt"));
-  expect_within_limits(feature_scene_against_pbrt("env-equiarea", 16, 3));
+  KILN_NEED_SHARED_PATH(feature_scene("env-equiarea.pbrt"));
+  expect_within_feature_limits(feature_scene_against_pbrt("env-equiarea", 16, 3), "env-equiarea");
 }
 
 TEST(PbrtFeatureScenes, TexturesAlphaMatchesPbrtV4) {
-  KILN_NEED_SHARED_PATH(features("textures-alpha.pbrt"));
-  const Image kiln = render_like_kiln(features("textures-alpha.pbrt"), 16, 3);
-  const Image pbrt = read_exr(features("reference/textures-alpha.exr")).rgb;
-  expect_within_limits(blocks_against_reference("textures-alpha, 16 spp", kiln, pbrt));
+  KILN_NEED_SHARED_PATH(feature_scene("textures-alpha.pbrt"));
+  const Image kiln = render_like_kiln(feature_scene("textures-alpha.pbrt"), 16, 3);
+  const Image pbrt = read_exr(feature_scene("reference/textures-alpha.exr")).rgb;
+  expect_within_feature_limits(blocks_against_reference("textures-alpha, 16 spp", kiln, pbrt), "whole image");
   // The cut-out leaf, its shadow and the textured floor around them.
   const PixelRect leaf_and_floor{128, 80, 352, 240};
-  expect_within_limits(blocks_against_reference("textures-alpha's leaf and floor, 16 spp", kiln, pbrt, leaf_and_floor));
+  expect_within_feature_limits(
+      blocks_against_reference("textures-alpha's leaf and floor, 16 spp", kiln, pbrt, leaf_and_floor),
+      "leaf and floor");
 }
 
 }  // namespace
