@@ -108,6 +108,12 @@ class Sampler {
     const uint32_t shuffled = reverse_bits(laine_karras(reversed_index_, uint32_t(h)));
     return unit_float(reverse_bits(laine_karras(shuffled, uint32_t(h >> 32))));
   }
+  // Passes over one 1D request without computing it: the value would be thrown away (a single-lobe BSDF's lobe
+  // choice). Every later request gets the value it would have had.
+  void skip_1d() {
+    if (dim_ >= kStratifiedDimensions) (void)rng_.next_u32();
+    else ++dim_;
+  }
   Vec2f next_2d() {
     if (dim_ >= kStratifiedDimensions) return rng_.next_2d();
     const uint64_t h = mix64(key_ ^ ((uint64_t(dim_++) << 1) | 1u));

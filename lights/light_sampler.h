@@ -52,12 +52,14 @@ class LightSampler {
   LightSampler(std::span<const Light> lights, LightSamplerKind kind);
 
   bool empty() const;
+  // sample() reads u: there is more than one light to choose from, or the hierarchy walks to one.
+  bool chooses() const { return stats_.kind == LightSamplerKind::Bvh || selector_.size() > 1; }
   // The chosen part and its probability for a shading point (q.n may be zero); u in [0, 1). Empty when no light
   // can be chosen.
   std::optional<SampledLight> sample(const LightQuery& q, float u) const {
     if (stats_.kind == LightSamplerKind::Bvh) return sample_bvh(q, u);
     float pmf = 0.0f;
-    const size_t i = selector_.sample(u, &pmf);
+    const size_t i = chooses() ? selector_.sample(u, &pmf) : (pmf = selector_.pmf(0), 0);
     if (!(pmf > 0.0f)) return std::nullopt;
     return SampledLight{uint32_t(i), kWholeLight, pmf};
   }

@@ -17,6 +17,7 @@ class LightSelector {
   LightSelector() = default;
   LightSelector(std::span<const Light> lights, LightSelection mode);
   bool empty() const { return dist_.size() == 0; }
+  size_t size() const { return dist_.size(); }
   // Index of the chosen light and its probability; u in [0,1).
   size_t sample(float u, float* pmf) const { return dist_.sample(u, pmf); }
   float pmf(size_t light_index) const { return dist_.pmf(light_index); }

@@ -35,6 +35,36 @@ MeshLight::MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t>
   }
   total_area_ = float(total);
   dist_ = Distribution1D(areas);
+  find_parallelogram();
+}
+
+// Relative tolerance for two triangles to make one parallelogram: their unshared corners' midpoint and their
+// shared edge's agree to this fraction of the quad's size, and their normals to this cosine deficit.
+constexpr float kParallelogramTolerance = 1e-6f;
+
+void MeshLight::find_parallelogram() {
+  if (tris_.size() != 2 || !(tris_[0].area > 0.0f) || !(tris_[1].area > 0.0f)) return;
+  if (dot(tris_[0].n, tris_[1].n) < 1.0f - kParallelogramTolerance) return;  // folded, or facing opposite ways
+  const std::array<Vec3f, 3> a{tris_[0].p0, tris_[0].p1, tris_[0].p2}, b{tris_[1].p0, tris_[1].p1, tris_[1].p2};
+  // The corner of each triangle that the other does not have; the remaining two are the shared diagonal.
+  const auto lone = [](const std::array<Vec3f, 3>& t, const std::array<Vec3f, 3>& other) -> int {
+    int found = -1;
+    for (int i = 0; i < 3; ++i) {
+      const bool shared = t[size_t(i)] == other[0] || t[size_t(i)] == other[1] || t[size_t(i)] == other[2];
+      if (!shared) {
+        if (found >= 0) return -1;
+        found = i;
+      }
+    }
+    return found;
+  };
+  const int ia = lone(a, b), ib = lone(b, a);
+  if (ia < 0 || ib < 0) return;
+  const Vec3f corner = a[size_t(ia)], opposite = b[size_t(ib)];
+  const Vec3f s1 = a[size_t((ia + 1) % 3)], s2 = a[size_t((ia + 2) % 3)];
+  const float size = max_component(abs(opposite - corner)) + max_component(abs(s2 - s1));
+  if (!(max_component(abs((corner + opposite) - (s1 + s2))) <= kParallelogramTolerance * size)) return;
+  quad_ = Parallelogram{corner, s1 - corner, s2 - corner, tris_[0].n};
 }
 
 MeshLight::MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t> indices,
@@ -47,10 +77,13 @@ MeshLight::MeshLight(std::span<const Vec3f> positions, std::span<const uint32_t>
                 std::to_string(tris_.size()) + " triangles");
   image_ = std::move(image);
   tri_uvs_ = std::move(tri_uvs);
+  quad_.reset();  // the image is read at each triangle's own (u, v)
 }
 
 std::optional<LightSample> MeshLight::sample_li(const LightQuery& q, Vec2f u) const {
   if (!(total_area_ > 0.0f)) return std::nullopt;
+  if (quad_) return connect(q, quad_->corner + quad_->side1 * u.x + quad_->side2 * u.y, quad_->n, 1.0f / total_area_,
+                            radiance_);
   float pmf = 0.0f, u_tri = 0.0f;
   const size_t i = dist_.sample(u.x, &pmf, &u_tri);
   return sample_on(q, i, pmf, {u_tri, u.y});
@@ -65,21 +98,24 @@ std::optional<LightSample> MeshLight::sample_on(const LightQuery& q, size_t i, f
   const Tri& t = tris_[i];
   if (!(pmf > 0.0f) || !(t.area > 0.0f)) return std::nullopt;
   const Vec2f b = sample_uniform_triangle(u);
-  const Vec3f p = t.p0 * (1.0f - b.x - b.y) + t.p1 * b.x + t.p2 * b.y;
+  return connect(q, t.p0 * (1.0f - b.x - b.y) + t.p1 * b.x + t.p2 * b.y, t.n, pmf / t.area, radiance_at(i, b));
+}
+
+std::optional<LightSample> MeshLight::connect(const LightQuery& q, Vec3f p, Vec3f n, float area_pdf, Rgb li) const {
   const Vec3f to_light = p - q.p;
   const float d2 = length_squared(to_light);
   if (!(d2 > 0.0f) || !std::isfinite(d2)) return std::nullopt;
   const float d = std::sqrt(d2);
   const Vec3f wi = to_light / d;
-  const float cos_l = two_sided_ ? std::abs(dot(t.n, wi)) : -dot(t.n, wi);
+  const float cos_l = two_sided_ ? std::abs(dot(n, wi)) : -dot(n, wi);
   if (!(cos_l > 0.0f)) return std::nullopt;  // q sees the back (non-emitting) side, or the triangle edge-on
   LightSample s;
-  s.li = radiance_at(i, b);
+  s.li = li;
   s.wi = wi;
   s.p_light = p;
-  s.n_light = t.n;
+  s.n_light = n;
   s.distance = d;
-  s.pdf = (pmf / t.area) * d2 / cos_l;
+  s.pdf = area_pdf * d2 / cos_l;
   return s;
 }
 

@@ -25,6 +25,14 @@ constexpr bool handles_both_sides() {
     return false;
 }
 
+template <class B>
+constexpr bool ignores_lobe_choice() {
+  if constexpr (requires { B::kIgnoresLobeChoice; })
+    return B::kIgnoresLobeChoice;
+  else
+    return std::is_same_v<B, NoSurface>;
+}
+
 float clamp_unit(float u) { return std::clamp(u, 0.0f, kOneMinusEpsilon); }
 
 float surface_albedo_estimate(const SurfaceBrdf& s) {
@@ -142,6 +150,11 @@ bool valid_sample(const BsdfSample& s) {
 uint32_t Material::flags() const { return surface_part_flags(surface) | delta_flags(delta); }
 
 uint32_t Material::surface_flags() const { return surface_part_flags(surface); }
+
+bool Material::reads_lobe_choice() const {
+  return has_delta() ||
+         !std::visit([](const auto& b) { return ignores_lobe_choice<std::decay_t<decltype(b)>>(); }, surface);
+}
 
 bool Material::oriented() const {
   return std::holds_alternative<Dielectric>(delta) || surface_handles_both_sides(surface);

@@ -60,6 +60,10 @@ struct Material {
   // The frame's +z must be the geometric outside (delta Dielectric, or a surface BSDF that handles both sides):
   // integrators must not flip such a frame towards wo.
   bool oriented() const;
+  // sample() reads uc: there is a delta part to choose, or a surface BSDF that chooses among its lobes. A BSDF
+  // with one lobe declares `static constexpr bool kIgnoresLobeChoice = true`, and integrators then need not draw
+  // uc (the sampler's hashing is a tenth of a diffuse scene's render time).
+  bool reads_lobe_choice() const;
   // The non-delta part transmits (RoughDielectric, DiffuseTransmission): next event estimation must also try
   // light directions on the other side of the surface, and a transmitted sample crosses to the other side (into
   // the inside for an oriented material; a thin sheet has no inside and changes no medium).

@@ -25,6 +25,7 @@ namespace kiln {
 struct RoughConductor {
   TrowbridgeReitz distribution;
   RgbComplexIor ior{Rgb(0.2f, 0.92f, 1.1f), Rgb(3.91f, 2.45f, 2.14f)};
+  static constexpr bool kIgnoresLobeChoice = true;  // one lobe: sample() does not read uc
 
   Rgb eval(Vec3f wo, Vec3f wi) const;
   float pdf(Vec3f wo, Vec3f wi) const;

@@ -61,11 +61,8 @@ SurfacePoint on_quadric(const QuadricShape& q, const Ray& ray, float t) {
 SurfacePoint static_surface_point(const WorldGeometry& g, const Shape& s, ShapeKind kind, const Ray& ray,
                                   const Hit& hit) {
   switch (kind) {
-    case ShapeKind::Mesh: {
-      const TriangleMesh& m = g.meshes[s.index];
-      const Vec3f a = m.vertex(hit.prim, 0);
-      return {barycentric_point(m, hit), unit_or_z(cross(m.vertex(hit.prim, 1) - a, m.vertex(hit.prim, 2) - a))};
-    }
+    case ShapeKind::Mesh:  // both accelerators report (v1-v0)x(v2-v0) as a world mesh's hit.ng
+      return {barycentric_point(g.meshes[s.index], hit), unit_or_z(hit.ng)};
     case ShapeKind::Instance: {
       const MeshInstance& inst = g.instances[s.index];
       const Vec3f p_object = barycentric_point(g.prototypes[inst.prototype], hit);

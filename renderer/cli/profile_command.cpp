@@ -193,6 +193,7 @@ ProfileReport run_profile(const ProfileArgs& args) {
     RenderOptions ro;
     ro.seed = args.seed;
     ro.spp_total = std::max(1u, args.spp);
+    ro.time_ray_queries = true;
     Film film(camera.width(), camera.height());
     cpu_since();
     const RenderStats rs = render_samples(*world, camera, settings, ro, 0, ro.spp_total, film);

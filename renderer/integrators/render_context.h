@@ -27,6 +27,7 @@ struct RenderOptions {
   std::optional<Crop> crop;  // only these pixels are rendered (others stay empty)
   bool reverse_tile_order = false;     // for tests: the result must not depend on it
   bool progress = false;               // progress bar + ETA on stderr
+  bool time_ray_queries = false;       // count TSC cycles in accelerator queries (kiln profile's time shares)
   const std::atomic<bool>* cancel = nullptr;  // set asynchronously (SIGINT): finish started tiles, skip the rest
   PixelFilterDesc filter;                     // pixel filter, by filter importance sampling (default: box, 1 px)
   // Stop sampling a pixel once its noise estimate is below the threshold (renderer/film/adaptive_sampling.h). Needs

@@ -92,6 +92,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
       }
       const Tile& t = tiles[ti];
       RenderStats& st = tile_stats[ti];
+      st.rays.timed = options.time_ray_queries;
       for (int y = t.y0; y < t.y1; ++y)
         for (int x = t.x0; x < t.x1; ++x) {
           // Checked per pixel, not per tile: at high spp one tile can take minutes, and an interrupt must stop
@@ -108,7 +109,8 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
             Sampler sampler(options.seed, uint32_t(x), uint32_t(y), s);
             const FilterSample fs = pixel_offset(settings, options.spp_total, filter, sampler);
             sampler.set_dimension(kLensDimension);
-            const Vec2f lens = sampler.next_2d();
+            // A pinhole reads no lens sample: it is not computed (the dimensions after it are fixed anyway).
+            const Vec2f lens = camera.has_aperture() ? sampler.next_2d() : Vec2f(0.5f, 0.5f);
             // Only a scene with motion takes a time sample (from a dedicated stream: other values are unchanged).
             const float time = (settings.features & kFeatureMotionBlur) ? sampler.dedicated_1d(kTimeStream) : 0.0f;
             const CameraRay cr =
@@ -139,6 +141,7 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
   });
 
   RenderStats total;
+  total.rays.timed = options.time_ray_queries;
   for (const RenderStats& st : tile_stats) {
     total.rays.add(st.rays);
     total.cancelled |= st.cancelled;

@@ -23,6 +23,25 @@ std::vector<Vec2f> pixel_points(uint64_t seed, uint32_t px, uint32_t py, uint32_
   return pts;
 }
 
+// Skipping a 1D request (a value nobody reads) leaves every later value as drawing it would have, within the
+// stratified dimensions and past them (the independent tail).
+TEST(Sampler, SkippingARequestKeepsTheValuesAfterIt) {
+  for (const uint32_t start : {3u, kStratifiedDimensions - 1, kStratifiedDimensions + 5}) {
+    for (uint32_t index = 0; index < 16; ++index) {
+      Sampler drawn(11, 4, 9, index), skipped(11, 4, 9, index);
+      drawn.set_dimension(start);
+      skipped.set_dimension(start);
+      (void)drawn.next_float();
+      skipped.skip_1d();
+      EXPECT_EQ(drawn.dimension(), skipped.dimension());
+      const Vec2f a = drawn.next_2d(), b = skipped.next_2d();
+      EXPECT_EQ(a.x, b.x) << "from dimension " << start << ", sample " << index;
+      EXPECT_EQ(a.y, b.y) << "from dimension " << start << ", sample " << index;
+      EXPECT_EQ(drawn.next_float(), skipped.next_float());
+    }
+  }
+}
+
 // A dedicated stream (the shutter time) is stratified over a pixel's samples and reading it changes no other value:
 // a scene that never asks for it renders exactly as before, one that does keeps every other dimension.
 TEST(Sampler, DedicatedStreamIsStratifiedAndLeavesTheDimensionsAlone) {

@@ -59,6 +59,53 @@ TEST(MeshLight, QuadOfTwoTrianglesMatchesLambertFormula) {
   EXPECT_NEAR(light.total_area(), 5.0f, 1e-5f);
 }
 
+// Two triangles that make one parallelogram are sampled as it: the sample point is an affine function of u (the
+// square's centre goes to the quad's centre, equal steps in u to equal steps on the quad), so the sampler's
+// stratification carries over to the lamp; the density stays 1/area, as pdf_li reports for either triangle.
+TEST(MeshLight, AQuadLampIsSampledAsOneParallelogram) {
+  const std::vector<Vec3f> quad{{-1, -1, 2}, {-0.5f, 1, 2}, {1.5f, 1.2f, 2}, {1.0f, -0.8f, 2}};  // normal -z
+  const MeshLight light = make(quad, {0, 1, 2, 0, 2, 3});
+  const LightQuery q{{0.2f, 0.1f, 0}, {0, 0, 1}};
+  const auto at = [&](Vec2f u) {
+    const auto s = light.sample_li(q, u);
+    EXPECT_TRUE(s.has_value());
+    return s ? s->p_light : Vec3f(0.0f);
+  };
+  const Vec3f centre = (quad[0] + quad[1] + quad[2] + quad[3]) * 0.25f;
+  EXPECT_LT(length(at({0.5f, 0.5f}) - centre), 1e-5f);
+  Rng rng(3, 9);
+  for (int i = 0; i < 200; ++i) {
+    const Vec2f u{0.3f * rng.next_float(), 0.3f * rng.next_float()}, step{0.25f + 0.2f * rng.next_float(), 0.3f};
+    const Vec3f d1 = at(u + step) - at(u), d2 = at(Vec2f{u.x + 0.2f, u.y + 0.1f} + step) - at({u.x + 0.2f, u.y + 0.1f});
+    EXPECT_LT(length(d1 - d2), 1e-5f) << "sample points are not affine in u";
+  }
+  for (int i = 0; i < 200; ++i) {
+    const auto s = light.sample_li(q, rng.next_2d());
+    ASSERT_TRUE(s.has_value());
+    const float on0 = light.pdf_li(q, s->p_light, s->n_light, 0), on1 = light.pdf_li(q, s->p_light, s->n_light, 1);
+    EXPECT_NEAR(on0, s->pdf, 1e-5f * s->pdf);
+    EXPECT_NEAR(on1, s->pdf, 1e-5f * s->pdf);
+  }
+}
+
+// Pairs that are not one parallelogram facing one way keep the triangle-by-triangle sampling: a trapezoid, and a
+// quad whose second triangle is wound the other way (it emits downwards, the first upwards). Their irradiance
+// follows Lambert's formula for what really emits towards the receiver.
+TEST(MeshLight, TrapezoidsAndMixedWindingsAreSampledTriangleByTriangle) {
+  const std::vector<Vec3f> trapezoid{{-1, -1, 2}, {-0.5f, 1, 2}, {0.5f, 1, 2}, {1.0f, -1, 2}};  // normal -z
+  const LightQuery below{{0.2f, 0.1f, 0}, normalize(Vec3f{0.1f, 0.2f, 1})};
+  const auto e = irradiance(make(trapezoid, {0, 1, 2, 0, 2, 3}), below, 21);
+  const double expected = test::polygon_irradiance(trapezoid, below.p, below.n, kL);
+  EXPECT_TRUE(within_error(e, expected)) << "trapezoid: " << e.mean << " +- " << e.std_error << " vs " << expected;
+
+  const std::vector<Vec3f> square{{-1, -1, 2}, {-1, 1, 2}, {1, 1, 2}, {1, -1, 2}};
+  const MeshLight mixed = make(square, {0, 1, 2, 0, 3, 2});  // first triangle faces -z, second +z
+  const auto m = irradiance(mixed, below, 22);
+  const double first_only = test::polygon_irradiance({square[0], square[1], square[2]}, below.p, below.n, kL);
+  EXPECT_TRUE(within_error(m, first_only)) << "mixed windings: " << m.mean << " +- " << m.std_error << " vs "
+                                           << first_only;
+}
+
 TEST(MeshLight, EmitsFromTheFrontSideOnly) {
   const std::vector<Vec3f> tri{{0, 0, 1}, {0, 1, 1}, {1, 0, 1}};  // normal -z
   const MeshLight light = make(tri, {0, 1, 2});

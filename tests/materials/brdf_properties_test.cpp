@@ -279,5 +279,39 @@ TEST(BrdfSample, ValuesAgreeWithEvalAndPdf) {
   }
 }
 
+// Integrators leave the lobe choice undrawn for a material that says it does not read it (the sampler's hashing is
+// a tenth of a diffuse scene's time): such a material must sample the same direction, value and density for any uc.
+// Materials that choose among lobes must say so.
+TEST(LobeChoice, MaterialsThatIgnoreItSampleTheSameForEveryChoice) {
+  Material lambert_mirror = surface_material(Lambert{Rgb(0.5f)});
+  lambert_mirror.delta = Mirror{Rgb(0.4f)};
+  const struct {
+    const char* name;
+    Material m;
+    bool reads;
+  } cases[] = {
+      {"lambert", surface_material(Lambert{Rgb(0.7f)}), false},
+      {"rough conductor", surface_material(RoughConductor{TrowbridgeReitz(0.3f, 0.1f), {Rgb(0.2f), Rgb(3.9f)}}), false},
+      {"blinn-phong kd+ks", surface_material(BlinnPhong{Rgb(0.3f), Rgb(0.6f), 10.0f, PhongVariant::Modified}), true},
+      {"phong kd+ks", surface_material(Phong{Rgb(0.3f), Rgb(0.6f), 10.0f, PhongVariant::Modified}), true},
+      {"torrance-sparrow kd+ks", surface_material(TorranceSparrow{Rgb(0.5f), Rgb(0.5f), 50.0f, 0.37f, 2.82f, true}),
+       true},
+      {"lambert + mirror", lambert_mirror, true},
+  };
+  for (const auto& c : cases) {
+    EXPECT_EQ(c.m.reads_lobe_choice(), c.reads) << c.name;
+    if (c.m.reads_lobe_choice()) continue;
+    Rng rng(31, 7);
+    for (int i = 0; i < 5000; ++i) {
+      const Vec3f wo = direction_at(0.05 + 0.95 * rng.next_float(), 6.28 * rng.next_float());
+      const Vec2f u = rng.next_2d();
+      const auto a = c.m.sample(wo, rng.next_float(), u), b = c.m.sample(wo, rng.next_float(), u);
+      ASSERT_EQ(a.has_value(), b.has_value()) << c.name;
+      if (!a) continue;
+      ASSERT_TRUE(a->wi == b->wi && a->f == b->f && a->pdf == b->pdf) << c.name << ": uc changed the sample";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace kiln::test
