@@ -114,6 +114,12 @@ class Sampler {
     if (dim_ >= kStratifiedDimensions) (void)rng_.next_u32();
     else ++dim_;
   }
+  // next_float() when the caller will read it, else skip_1d() and 0.
+  float next_float_if(bool read) {
+    if (read) return next_float();
+    skip_1d();
+    return 0.0f;
+  }
   Vec2f next_2d() {
     if (dim_ >= kStratifiedDimensions) return rng_.next_2d();
     const uint64_t h = mix64(key_ ^ ((uint64_t(dim_++) << 1) | 1u));

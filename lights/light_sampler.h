@@ -58,8 +58,8 @@ class LightSampler {
   // can be chosen.
   std::optional<SampledLight> sample(const LightQuery& q, float u) const {
     if (stats_.kind == LightSamplerKind::Bvh) return sample_bvh(q, u);
-    float pmf = 0.0f;
-    const size_t i = chooses() ? selector_.sample(u, &pmf) : (pmf = selector_.pmf(0), 0);
+    float pmf = selector_.pmf(0);  // one light: no choice to make (u is not drawn)
+    const size_t i = chooses() ? selector_.sample(u, &pmf) : 0;
     if (!(pmf > 0.0f)) return std::nullopt;
     return SampledLight{uint32_t(i), kWholeLight, pmf};
   }

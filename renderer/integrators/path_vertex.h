@@ -65,11 +65,10 @@ float direction_pdf(DirectionSampling directions, const Material& m, Vec3f wo_l,
 
 // Draws the lobe choice and the direction from the vertex's dimensions (the caller sets kLobeDimension).
 template <bool kDelta>
-[[gnu::always_inline]] inline std::optional<DirectionSample> sample_direction(DirectionSampling directions, const Material& m, Vec3f wo_l,
-                                                Sampler& sampler, bool surface_only) {
-  float uc = 0.0f;
-  if (m.reads_lobe_choice()) uc = sampler.next_float();
-  else sampler.skip_1d();
+[[gnu::always_inline]] inline std::optional<DirectionSample> sample_direction(DirectionSampling directions,
+                                                                              const Material& m, Vec3f wo_l,
+                                                                              Sampler& sampler, bool surface_only) {
+  const float uc = sampler.next_float_if(m.reads_lobe_choice());
   const Vec2f u = sampler.next_2d();
   if (surface_only && !m.has_surface()) return std::nullopt;
   directions = sampling_for(directions, m);
@@ -124,14 +123,6 @@ inline void see_resolved_surface(VisibleSurface* visible, const SurfaceInteracti
     see_surface(visible, si, ray, travelled, [&] { return material_albedo(*si.material); });
 }
 
-// The value the light sampler chooses by, from the sampler's current dimension: not computed (0) when there is
-// only one light to choose.
-inline float draw_light_choice(const LightSampler& lights, Sampler& sampler) {
-  if (lights.chooses()) return sampler.next_float();
-  sampler.skip_1d();
-  return 0.0f;
-}
-
 // One light sample at a surface vertex: the selector's light, a point on it, the shadow ray.
 struct DirectLight {
   Rgb value;              // f * Li * |cos theta_i| / light_pdf
@@ -144,12 +135,13 @@ struct DirectLight {
 // sampler chooses a light (or one triangle of a mesh light), then a point on it. Empty when the light is occluded,
 // faces away or the BSDF does not scatter towards it.
 // time: the path's instant (the shadow ray's).
-[[gnu::always_inline]] inline std::optional<DirectLight> sample_direct_light(const World& w, const SurfaceInteraction& si, const Frame& frame,
-                                                      Vec3f wo_l, uint32_t dim, float time, Sampler& sampler,
-                                                      RayCounters& c) {
+[[gnu::always_inline]] inline std::optional<DirectLight> sample_direct_light(const World& w, const SurfaceInteraction& si,
+                                                                           const Frame& frame, Vec3f wo_l, uint32_t dim,
+                                                                           float time, Sampler& sampler,
+                                                                           RayCounters& c) {
   sampler.set_dimension(dim + kLightChoiceDimension);
   const LightQuery q{si.p, si.ns};
-  const auto chosen = w.light_sampler.sample(q, draw_light_choice(w.light_sampler, sampler));
+  const auto chosen = w.light_sampler.sample(q, sampler.next_float_if(w.light_sampler.chooses()));
   const Vec2f u = sampler.next_2d();
   if (!chosen) return std::nullopt;
   const auto ls = sample_li(w.lights[chosen->light], chosen->part, q, u);

@@ -323,7 +323,7 @@ class VolumetricPath {
   template <typename Connect>
   void add_direct_light(const LightQuery& q, uint32_t dim, Connect&& connect) {
     sampler_.set_dimension(dim + kLightChoiceDimension);
-    const auto chosen = w_.light_sampler.sample(q, draw_light_choice(w_.light_sampler, sampler_));
+    const auto chosen = w_.light_sampler.sample(q, sampler_.next_float_if(w_.light_sampler.chooses()));
     const Vec2f u = sampler_.next_2d();
     if (!chosen) return;
     const auto ls = sample_li(w_.lights[chosen->light], chosen->part, q, u);

@@ -141,7 +141,6 @@ RenderStats render_samples(const World& world, const Camera& camera, const Integ
   });
 
   RenderStats total;
-  total.rays.timed = options.time_ray_queries;
   for (const RenderStats& st : tile_stats) {
     total.rays.add(st.rays);
     total.cancelled |= st.cancelled;

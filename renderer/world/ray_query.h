@@ -37,11 +37,11 @@ struct RayCounters {
 // seconds (the ray-query time share of `kiln render`, the per-kind query rates of `kiln profile`).
 double tsc_frequency();
 
-// A camera ray when `primary`, else an indirect (bounce) ray.
 // TSC cycles since t0 when the counters are timed, else 0 (and no time-stamp read).
 inline uint64_t query_start(const RayCounters& c) { return c.timed ? __rdtsc() : 0; }
 inline uint64_t query_cycles_since(const RayCounters& c, uint64_t t0) { return c.timed ? __rdtsc() - t0 : 0; }
 
+// A camera ray when `primary`, else an indirect (bounce) ray.
 inline bool query_intersect(const World& w, const Ray& r, Hit& hit, RayCounters& c, bool primary) {
   const uint64_t t0 = query_start(c);
   const bool h = w.accel->intersect(r, hit);

@@ -31,8 +31,8 @@ TEST(Sampler, SkippingARequestKeepsTheValuesAfterIt) {
       Sampler drawn(11, 4, 9, index), skipped(11, 4, 9, index);
       drawn.set_dimension(start);
       skipped.set_dimension(start);
-      (void)drawn.next_float();
-      skipped.skip_1d();
+      (void)drawn.next_float_if(true);
+      EXPECT_EQ(skipped.next_float_if(false), 0.0f);
       EXPECT_EQ(drawn.dimension(), skipped.dimension());
       const Vec2f a = drawn.next_2d(), b = skipped.next_2d();
       EXPECT_EQ(a.x, b.x) << "from dimension " << start << ", sample " << index;

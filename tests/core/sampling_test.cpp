@@ -168,7 +168,8 @@ TEST(ConcentricDisk, QuarterTurnCosineAndSineMatchLibm) {
   for (int i = 0; i <= kSteps; ++i) {
     const float a = (kPi / 4.0f) * (2.0f * float(i) / float(kSteps) - 1.0f);
     const Vec2f cs = cos_sin_within_quarter_pi(a);
-    worst = std::max({worst, std::abs(double(cs.x) - std::cos(double(a))), std::abs(double(cs.y) - std::sin(double(a)))});
+    worst = std::max({worst, std::abs(double(cs.x) - std::cos(double(a))),
+                      std::abs(double(cs.y) - std::sin(double(a)))});
   }
   EXPECT_LT(worst, 1.2e-7) << "largest error against cos/sin in double";
   for (const Vec2f u : {Vec2f{0.9f, 0.6f}, Vec2f{0.55f, 0.95f}, Vec2f{0.1f, 0.3f}, Vec2f{0.35f, 0.02f}}) {
