@@ -5,6 +5,7 @@
 // one light sample, densities) are in renderer/integrators/path_vertex.h.
 #pragma once
 #include <algorithm>
+#include <cmath>
 
 #include "renderer/integrators/path_vertex.h"
 
@@ -81,10 +82,16 @@ inline bool scatter(PathState& p, const SurfaceInteraction& si, const Frame& fra
   return true;
 }
 
+// The probability that Kiln's roulette lets a path with this throughput go on: min(1, √throughput), Cycles' rule. It
+// ends paths later than the throughput itself would (pbrt-v4's rule): where walls are bright, the light a path still
+// gathers after a few bounces is comparable to what it gathered before, and ending it early costs more variance than
+// the time it saves (README, "Where the time goes"). Survivors carry √throughput <= 1: weights stay bounded.
+inline float roulette_survival(float throughput) { return std::min(1.0f, std::sqrt(throughput)); }
+
 // Kiln's unbiased throughput roulette at the vertex whose dimensions start at dim: the path goes on with probability
-// min(1, beta * eta_scale) and then carries the share of the paths that ended. False when it ends.
+// roulette_survival(beta * eta_scale) and then carries the share of the paths that ended. False when it ends.
 inline bool survives_roulette(PathState& p, uint32_t dim, Sampler& sampler) {
-  const float survive = std::min(1.0f, p.beta.max_component() * p.eta_scale);
+  const float survive = roulette_survival(p.beta.max_component() * p.eta_scale);
   sampler.set_dimension(dim + kRouletteDimension);
   if (sampler.next_float() >= survive) return false;
   p.beta *= 1.0f / survive;

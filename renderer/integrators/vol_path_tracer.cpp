@@ -308,7 +308,7 @@ class VolumetricPath {
   // Kiln's throughput roulette on the path's estimate beta / r_u, after rr_min_depth scattering events.
   bool roulette(uint32_t dim) {
     if (!s_.russian_roulette || depth_ <= s_.rr_min_depth) return true;
-    const float survive = std::min(1.0f, (p_.beta * (p_.eta_scale / average(r_u_))).max_component());
+    const float survive = roulette_survival((p_.beta * (p_.eta_scale / average(r_u_))).max_component());
     sampler_.set_dimension(dim + kRouletteDimension);
     if (sampler_.next_float() >= survive) return false;
     p_.beta *= 1.0f / survive;
