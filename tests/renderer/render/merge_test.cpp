@@ -337,7 +337,8 @@ class SceneIdentity : public ::testing::Test {
   void SetUp() override {
     const std::string shared = shared_dir() + "/scenes/ceng795/regression/hw4_2019";
     KILN_NEED_SHARED_PATH(shared + "/sphere_texture_replace_bilinear.xml");
-    dir_ = tmp_dir("scene_identity");
+    // One folder per test: ctest runs the fixture's tests as concurrent processes, and each empties its folder.
+    dir_ = tmp_dir(std::string("scene_identity_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_ + "/scene/textures");
     fs::copy_file(shared + "/sphere_texture_replace_bilinear.xml", scene());
